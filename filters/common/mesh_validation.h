@@ -1,0 +1,17 @@
+// Checks every core runs first, so bad input fails with a clear message
+// before any work (and before the host mesh is touched).
+#pragma once
+
+#include "common/tri_mesh.h"
+
+namespace mr {
+
+/// \throw InvalidInput if the mesh has no vertices, no faces (a point cloud),
+///        deleted elements, or non-finite coordinates. `what` names the input
+///        in the message ("the input mesh", "body 3", ...).
+void require_triangle_surface(const TriMesh& mesh, const std::string& what = "the input mesh");
+
+/// True if every coordinate of every vertex is finite.
+bool has_finite_coordinates(const TriMesh& mesh);
+
+}  // namespace mr

@@ -1,0 +1,254 @@
+#include "features/feature_lines.h"
+
+#include "common/edge_table.h"
+#include "common/errors.h"
+#include "common/mesh_validation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <string>
+
+namespace mr::features {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+void check_params(const Params& p) {
+  if (!(p.ridge_angle_deg > 0.0 && p.ridge_angle_deg < 180.0))
+    throw InvalidInput("ridge_angle must lie in (0, 180) degrees, got " + std::to_string(p.ridge_angle_deg));
+  if (!(p.corner_angle_deg >= 0.0 && p.corner_angle_deg <= 180.0))
+    throw InvalidInput("corner_angle must lie in [0, 180] degrees, got " + std::to_string(p.corner_angle_deg));
+  if (p.min_patch_faces < 0)
+    throw InvalidInput("min_patch_faces must be >= 0, got " + std::to_string(p.min_patch_faces));
+}
+
+// Unit face normals; zero for a degenerate face, which then never makes a ridge by angle.
+std::vector<Point3> unit_face_normals(const TriMesh& mesh) {
+  std::vector<Point3> normals(mesh.face.size());
+  for (size_t f = 0; f < mesh.face.size(); ++f) {
+    const auto& face = mesh.face[f];
+    Point3 n = (face.cP(1) - face.cP(0)) ^ (face.cP(2) - face.cP(0));
+    double len = n.Norm();
+    normals[f] = len > 0 ? n / len : Point3(0, 0, 0);
+  }
+  return normals;
+}
+
+// Is edge e a ridge by its shape (boundary, non-manifold, or dihedral angle)?
+bool is_shape_ridge(const TriMesh& mesh, const EdgeTable& edges, const std::vector<Point3>& normals,
+                    int e, double cos_ridge) {
+  if (edges.valence(e) != 2) return true;
+  FaceSide a = edges.side(e, 0), b = edges.side(e, 1);
+  const Point3& na = normals[a.face];
+  Point3 nb = normals[b.face];
+  if (na.SquaredNorm() == 0 || nb.SquaredNorm() == 0) return false;
+  // Two faces that run the shared edge the same way are inconsistently oriented:
+  // compare against the flipped normal so the angle is the real crease angle.
+  auto idx = [&](FaceSide s, int k) { return vcg::tri::Index(mesh, mesh.face[s.face].cV((s.side + k) % 3)); };
+  if (idx(a, 0) == idx(b, 0)) nb = -nb;
+  return na * nb < cos_ridge;
+}
+
+struct Flood {
+  std::vector<int> patch_of_face;
+  int count = 0;
+};
+
+Flood flood_patches(const TriMesh& mesh, const EdgeTable& edges, const std::vector<char>& edge_is_ridge) {
+  const int nf = int(mesh.face.size());
+  Flood flood;
+  flood.patch_of_face.assign(nf, -1);
+  std::vector<int> stack;
+  for (int seed = 0; seed < nf; ++seed) {
+    if (flood.patch_of_face[seed] >= 0) continue;
+    int id = flood.count++;
+    flood.patch_of_face[seed] = id;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      int f = stack.back();
+      stack.pop_back();
+      for (int z = 0; z < 3; ++z) {
+        int e = edges.edge_of(f, z);
+        if (edge_is_ridge[e]) continue;
+        int g = edges.opposite_face(f, z);
+        if (g >= 0 && flood.patch_of_face[g] < 0) {
+          flood.patch_of_face[g] = id;
+          stack.push_back(g);
+        }
+      }
+    }
+  }
+  return flood;
+}
+
+// Merge patches smaller than min_faces into the neighbouring patch with most faces,
+// smallest first; the ridges between merged patches stop being ridges.
+int merge_small_patches(const EdgeTable& edges, std::vector<char>& edge_is_ridge, Flood& flood,
+                        int min_faces) {
+  if (min_faces <= 0 || flood.count <= 1) return 0;
+  const int np = flood.count;
+  std::vector<int> parent(np);
+  for (int i = 0; i < np; ++i) parent[i] = i;
+  auto find = [&](int i) { while (parent[i] != i) i = parent[i] = parent[parent[i]]; return i; };
+  std::vector<long> size(np, 0);
+  for (int p : flood.patch_of_face) ++size[p];
+  std::vector<std::vector<int>> neighbours(np);
+  for (int e = 0; e < edges.edge_count(); ++e) {
+    if (edges.valence(e) != 2) continue;
+    int pa = flood.patch_of_face[edges.side(e, 0).face], pb = flood.patch_of_face[edges.side(e, 1).face];
+    if (pa != pb) { neighbours[pa].push_back(pb); neighbours[pb].push_back(pa); }
+  }
+  using Entry = std::pair<long, int>;  // (size, patch): smallest first, ties by id
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int i = 0; i < np; ++i) if (size[i] < min_faces) queue.push({size[i], i});
+  int merged = 0;
+  while (!queue.empty()) {
+    auto [sz, small] = queue.top();
+    queue.pop();
+    if (find(small) != small || sz != size[small] || size[small] >= min_faces) continue;
+    int best = -1;
+    for (int n : neighbours[small]) {
+      int other = find(n);
+      if (other == small) continue;
+      if (best < 0 || size[other] > size[best] || (size[other] == size[best] && other < best)) best = other;
+    }
+    if (best < 0) continue;  // an isolated component: nothing to merge with
+    parent[small] = best;
+    size[best] += size[small];
+    auto& into = neighbours[best];
+    into.insert(into.end(), neighbours[small].begin(), neighbours[small].end());
+    neighbours[small].clear();
+    std::sort(into.begin(), into.end());
+    into.erase(std::unique(into.begin(), into.end()), into.end());
+    ++merged;
+    if (size[best] < min_faces) queue.push({size[best], best});
+  }
+  if (merged == 0) return 0;
+  for (int& p : flood.patch_of_face) p = find(p);
+  for (int e = 0; e < edges.edge_count(); ++e)
+    if (edge_is_ridge[e] && edges.valence(e) == 2 &&
+        flood.patch_of_face[edges.side(e, 0).face] == flood.patch_of_face[edges.side(e, 1).face])
+      edge_is_ridge[e] = 0;
+  std::vector<int> renumber(np, -1);  // in order of first face
+  int next = 0;
+  for (int& p : flood.patch_of_face) {
+    if (renumber[p] < 0) renumber[p] = next++;
+    p = renumber[p];
+  }
+  flood.count = next;
+  return merged;
+}
+
+// Ridge edges incident to each vertex, in CSR form.
+struct VertexRidges {
+  std::vector<int> begin, edge;
+  int count(int v) const { return begin[v + 1] - begin[v]; }
+};
+
+VertexRidges vertex_ridges(int nv, const EdgeTable& edges, const std::vector<char>& edge_is_ridge) {
+  VertexRidges vr;
+  vr.begin.assign(nv + 1, 0);
+  for (int e = 0; e < edges.edge_count(); ++e)
+    if (edge_is_ridge[e]) { ++vr.begin[edges.v0(e) + 1]; ++vr.begin[edges.v1(e) + 1]; }
+  for (int v = 0; v < nv; ++v) vr.begin[v + 1] += vr.begin[v];
+  vr.edge.resize(vr.begin[nv]);
+  std::vector<int> fill(vr.begin.begin(), vr.begin.end() - 1);
+  for (int e = 0; e < edges.edge_count(); ++e)
+    if (edge_is_ridge[e]) { vr.edge[fill[edges.v0(e)]++] = e; vr.edge[fill[edges.v1(e)]++] = e; }
+  return vr;
+}
+
+int other_end(const EdgeTable& edges, int e, int v) { return edges.v0(e) == v ? edges.v1(e) : edges.v0(e); }
+
+std::vector<int> find_corners(const TriMesh& mesh, const EdgeTable& edges, const VertexRidges& vr,
+                              double corner_angle_deg) {
+  const double cos_corner = std::cos(corner_angle_deg * kPi / 180.0);
+  std::vector<int> corners;
+  for (int v = 0; v < int(mesh.vert.size()); ++v) {
+    int n = vr.count(v);
+    if (n == 0) continue;
+    if (n != 2) { corners.push_back(v); continue; }
+    int a = other_end(edges, vr.edge[vr.begin[v]], v);
+    int b = other_end(edges, vr.edge[vr.begin[v] + 1], v);
+    Point3 in = mesh.vert[v].cP() - mesh.vert[a].cP();
+    Point3 out = mesh.vert[b].cP() - mesh.vert[v].cP();
+    double li = in.Norm(), lo = out.Norm();
+    if (li == 0 || lo == 0) continue;
+    if ((in * out) / (li * lo) < cos_corner) corners.push_back(v);  // turns by more than the corner angle
+  }
+  return corners;
+}
+
+std::vector<DiscreteLine> trace_lines(int nv, const EdgeTable& edges, const std::vector<char>& edge_is_ridge,
+                                      const VertexRidges& vr, const std::vector<int>& corners) {
+  std::vector<char> is_corner(nv, 0), used(edges.edge_count(), 0);
+  for (int c : corners) is_corner[c] = 1;
+  std::vector<DiscreteLine> lines;
+  auto walk = [&](int start, int e) {
+    DiscreteLine line;
+    line.vertices.push_back(start);
+    int v = start;
+    while (true) {
+      used[e] = 1;
+      v = other_end(edges, e, v);
+      if (v == start) { line.closed = true; break; }
+      line.vertices.push_back(v);
+      if (is_corner[v]) break;
+      int next = -1;
+      for (int k = vr.begin[v]; k < vr.begin[v + 1]; ++k)
+        if (!used[vr.edge[k]]) { next = vr.edge[k]; break; }
+      if (next < 0) break;
+      e = next;
+    }
+    lines.push_back(std::move(line));
+  };
+  for (int c : corners)
+    for (int k = vr.begin[c]; k < vr.begin[c + 1]; ++k)
+      if (!used[vr.edge[k]]) walk(c, vr.edge[k]);
+  // What is left are closed loops through non-corner vertices.
+  for (int e = 0; e < edges.edge_count(); ++e)
+    if (edge_is_ridge[e] && !used[e]) walk(edges.v0(e), e);
+  return lines;
+}
+
+}  // namespace
+
+Result detect(const TriMesh& mesh, const Params& params) {
+  check_params(params);
+  require_triangle_surface(mesh);
+  const int nf = int(mesh.face.size());
+  const EdgeTable edges(mesh);
+  const auto normals = unit_face_normals(mesh);
+  const double cos_ridge = std::cos(params.ridge_angle_deg * kPi / 180.0);
+
+  Result result;
+  std::vector<char> edge_is_ridge(edges.edge_count(), 0);
+  for (int e = 0; e < edges.edge_count(); ++e) {
+    int val = edges.valence(e);
+    if (val == 1) ++result.boundary_edges;
+    if (val > 2) ++result.non_manifold_edges;
+    edge_is_ridge[e] = is_shape_ridge(mesh, edges, normals, e, cos_ridge);
+  }
+  if (params.use_selected_edges_as_ridges)
+    for (int f = 0; f < nf; ++f)
+      for (int z = 0; z < 3; ++z)
+        if (mesh.face[f].IsFaceEdgeS(z)) edge_is_ridge[edges.edge_of(f, z)] = 1;
+
+  Flood flood = flood_patches(mesh, edges, edge_is_ridge);
+  result.merged_patches = merge_small_patches(edges, edge_is_ridge, flood, params.min_patch_faces);
+
+  const VertexRidges vr = vertex_ridges(int(mesh.vert.size()), edges, edge_is_ridge);
+  result.corners = find_corners(mesh, edges, vr, params.corner_angle_deg);
+  result.lines = trace_lines(int(mesh.vert.size()), edges, edge_is_ridge, vr, result.corners);
+
+  result.ridge.assign(nf, {false, false, false});
+  for (int f = 0; f < nf; ++f)
+    for (int z = 0; z < 3; ++z) result.ridge[f][z] = edge_is_ridge[edges.edge_of(f, z)] != 0;
+  result.ridge_edges = int(std::count(edge_is_ridge.begin(), edge_is_ridge.end(), 1));
+  result.patch_of_face = std::move(flood.patch_of_face);
+  result.patch_count = flood.count;
+  return result;
+}
+
+}  // namespace mr::features

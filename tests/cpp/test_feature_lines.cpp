@@ -1,0 +1,195 @@
+#include "common/errors.h"
+#include "features/feature_lines.h"
+#include "shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+using namespace mr;
+
+namespace {
+features::Result detect(const TriMesh& m) { return features::detect(m, features::Params{}); }
+using features::detect;
+
+// Rotates every vertex about an arbitrary axis (rigid motion).
+void rotate(TriMesh& m, double angle) {
+  vcg::Matrix44d r;
+  r.SetRotateRad(angle, Point3(1, 2, 3).Normalize());
+  for (auto& v : m.vert) v.P() = r * v.P();
+}
+}  // namespace
+
+TEST(FeatureLines, CubeHas12Ridges8Corners12Lines6Patches) {
+  for (int n : {1, 4}) {
+    TriMesh m;
+    test::cube(m, n);
+    auto r = detect(m);
+    EXPECT_EQ(r.ridge_edges, 12 * n) << "n=" << n;
+    EXPECT_EQ(r.corners.size(), 8u);
+    EXPECT_EQ(r.lines.size(), 12u);
+    EXPECT_EQ(r.patch_count, 6);
+    for (const auto& line : r.lines) {
+      EXPECT_FALSE(line.closed);
+      EXPECT_EQ(line.vertices.size(), size_t(n + 1));
+    }
+  }
+}
+
+TEST(FeatureLines, EveryPatchOfTheCubeIsOneSquareSide) {
+  TriMesh m;
+  test::cube(m, 3);
+  auto r = detect(m);
+  std::vector<int> faces_per_patch(r.patch_count, 0);
+  for (int p : r.patch_of_face) ++faces_per_patch[p];
+  for (int count : faces_per_patch) EXPECT_EQ(count, 2 * 3 * 3);
+}
+
+TEST(FeatureLines, CylinderHasTwoClosedLinesNoCornersThreePatches) {
+  TriMesh m;
+  test::cylinder(m, 32, 4);
+  auto r = detect(m);
+  EXPECT_EQ(r.corners.size(), 0u);
+  ASSERT_EQ(r.lines.size(), 2u);
+  for (const auto& line : r.lines) {
+    EXPECT_TRUE(line.closed);
+    EXPECT_EQ(line.vertices.size(), 32u);
+  }
+  EXPECT_EQ(r.patch_count, 3);
+  EXPECT_EQ(r.ridge_edges, 64);
+}
+
+TEST(FeatureLines, SphereIsOnePatchWithoutLines) {
+  TriMesh m;
+  test::sphere(m, 3);
+  auto r = detect(m);
+  EXPECT_EQ(r.patch_count, 1);
+  EXPECT_EQ(r.lines.size(), 0u);
+  EXPECT_EQ(r.ridge_edges, 0);
+}
+
+TEST(FeatureLines, OpenGridBoundaryIsRidgeWithFourCornersAtTheSquareCorners) {
+  TriMesh m;
+  test::grid(m, 5);
+  auto r = detect(m);
+  EXPECT_EQ(r.boundary_edges, 20);
+  EXPECT_EQ(r.ridge_edges, 20);
+  ASSERT_EQ(r.corners.size(), 4u);
+  for (int c : r.corners) {
+    const auto& p = m.vert[c].cP();
+    EXPECT_TRUE((p[0] == 0 || p[0] == 1) && (p[1] == 0 || p[1] == 1));
+  }
+  EXPECT_EQ(r.lines.size(), 4u);
+  EXPECT_EQ(r.patch_count, 1);
+}
+
+TEST(FeatureLines, CornerAngleDecidesWhetherASquareTurnIsACorner) {
+  TriMesh m;
+  test::grid(m, 2);
+  features::Params p;
+  p.corner_angle_deg = 100;  // the grid's 90-degree turns are no longer corners
+  auto r = detect(m, p);
+  EXPECT_EQ(r.corners.size(), 0u);
+  ASSERT_EQ(r.lines.size(), 1u);
+  EXPECT_TRUE(r.lines[0].closed);
+}
+
+TEST(FeatureLines, RidgeAngleThresholdIsStrict) {
+  // Two triangles folded by 40 degrees: ridge at 30, not at 50.
+  const double a = 40.0 * 3.14159265358979323846 / 180.0;
+  TriMesh m;
+  test::build(m, {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -std::cos(a), std::sin(a)}},
+              {{0, 1, 2}, {1, 0, 3}});
+  features::Params p;
+  p.ridge_angle_deg = 30;
+  EXPECT_EQ(detect(m, p).patch_count, 2);
+  p.ridge_angle_deg = 50;
+  EXPECT_EQ(detect(m, p).patch_count, 1);
+}
+
+TEST(FeatureLines, InconsistentOrientationDoesNotFakeARidge) {
+  // A flat square of two triangles, the second one flipped.
+  TriMesh m;
+  test::build(m, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 3, 2}});
+  auto r = detect(m);
+  EXPECT_EQ(r.patch_count, 1);
+  EXPECT_EQ(r.ridge_edges, 4);  // only the boundary
+}
+
+TEST(FeatureLines, NonManifoldEdgeIsARidge) {
+  TriMesh m;
+  test::build(m, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}},
+              {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
+  auto r = detect(m);
+  EXPECT_EQ(r.non_manifold_edges, 1);
+  EXPECT_EQ(r.patch_count, 3);
+}
+
+TEST(FeatureLines, SelectedEdgesBecomeRidges) {
+  TriMesh m;
+  test::grid(m, 4);
+  // select the diagonal of every square on the main diagonal: splits the grid into two patches
+  features::Params p;
+  p.use_selected_edges_as_ridges = true;
+  auto base = detect(m, p);
+  EXPECT_EQ(base.patch_count, 1);
+  for (int i = 0; i < 4; ++i) m.face[2 * (i * 4 + i)].SetFaceEdgeS(2);  // edge (i,i)-(i+1,i+1)
+  for (int i = 0; i < 4; ++i) m.face[2 * (i * 4 + i) + 1].SetFaceEdgeS(0);
+  auto r = detect(m, p);
+  EXPECT_EQ(r.patch_count, 2);
+  EXPECT_EQ(r.ridge_edges, 16 + 4);
+}
+
+TEST(FeatureLines, SmallPatchesMergeIntoTheirLargestNeighbour) {
+  TriMesh m;
+  test::cube(m, 4);  // 32 faces per side, spacing 0.5
+  // Pull the centre of the +x side out into a steep pyramid: its faces become tiny patches.
+  for (auto& v : m.vert)
+    if (v.P() == Point3(1, 0, 0)) v.P() = Point3(1.5, 0, 0);
+  auto bumpy = detect(m);
+  EXPECT_GT(bumpy.patch_count, 6);
+  features::Params p;
+  p.min_patch_faces = 10;
+  auto merged = detect(m, p);
+  EXPECT_EQ(merged.patch_count, 6);
+  EXPECT_GE(merged.merged_patches, 1);
+  EXPECT_EQ(merged.corners.size(), 8u);
+}
+
+TEST(FeatureLines, PatchCountStableUnderRotation) {
+  TriMesh m;
+  test::cylinder(m, 40, 3);
+  auto before = detect(m);
+  rotate(m, 0.7);
+  auto after = detect(m);
+  EXPECT_EQ(before.patch_count, after.patch_count);
+  EXPECT_EQ(before.ridge_edges, after.ridge_edges);
+  EXPECT_EQ(before.corners, after.corners);
+}
+
+TEST(FeatureLines, DeterministicOutput) {
+  TriMesh m;
+  test::cube(m, 3);
+  auto a = detect(m), b = detect(m);
+  EXPECT_EQ(a.patch_of_face, b.patch_of_face);
+  EXPECT_EQ(a.corners, b.corners);
+  ASSERT_EQ(a.lines.size(), b.lines.size());
+  for (size_t i = 0; i < a.lines.size(); ++i) EXPECT_EQ(a.lines[i].vertices, b.lines[i].vertices);
+}
+
+TEST(FeatureLines, BadParametersAreRejected) {
+  TriMesh m;
+  test::cube(m, 1);
+  features::Params p;
+  p.ridge_angle_deg = 0;
+  EXPECT_THROW(detect(m, p), InvalidInput);
+  p = {};
+  p.corner_angle_deg = -1;
+  EXPECT_THROW(detect(m, p), InvalidInput);
+  p = {};
+  p.min_patch_faces = -3;
+  EXPECT_THROW(detect(m, p), InvalidInput);
+  TriMesh empty;
+  EXPECT_THROW(detect(empty), InvalidInput);
+}
