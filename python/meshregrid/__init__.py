@@ -4,7 +4,7 @@ Importing this package loads every MeshRegrid plugin into PyMeshLab and binds
 its filters as ``pymeshlab.MeshSet`` methods, e.g.
 ``ms.compute_feature_lines_and_patches(ridge_angle=30)``.
 """
-from .plugins import FILTERS, load_plugins, plugin_dir  # noqa: F401
+from .plugins import FILTERS, available_filters, load_plugins, plugin_dir  # noqa: F401
 
 load_plugins()
 
