@@ -29,7 +29,9 @@ function(add_meshregrid_plugin name)
   cmake_parse_arguments(ARG "" "" "SOURCES;CORES" ${ARGN})
   add_library(${name} MODULE ${ARG_SOURCES})
   set_target_properties(${name} PROPERTIES AUTOMOC ON PREFIX "lib"
-    LIBRARY_OUTPUT_DIRECTORY "${MESHREGRID_PLUGIN_DIR}")
+    LIBRARY_OUTPUT_DIRECTORY "${MESHREGRID_PLUGIN_DIR}"
+    # No RPATH: the host (MeshLab or PyMeshLab) has already loaded libmeshlab-common and Qt.
+    SKIP_BUILD_RPATH ON)
   target_include_directories(${name} PRIVATE "${PROJECT_SOURCE_DIR}/plugins")
   target_link_libraries(${name} PRIVATE meshlab_common ${ARG_CORES} meshregrid_warnings)
 endfunction()
