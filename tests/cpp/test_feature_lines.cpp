@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <set>
 
 using namespace mr;
@@ -192,4 +193,33 @@ TEST(FeatureLines, BadParametersAreRejected) {
   EXPECT_THROW(detect(m, p), InvalidInput);
   TriMesh empty;
   EXPECT_THROW(detect(empty), InvalidInput);
+}
+
+TEST(FeatureLines, RandomSoupWithDegenerateFacesNeverBreaks) {
+  // Random faces over few vertices: repeated indices, zero areas, edges on many faces.
+  std::mt19937 rng(7);
+  for (int round = 0; round < 20; ++round) {
+    const int nv = 6 + round;
+    std::uniform_int_distribution<int> pick(0, nv - 1);
+    std::uniform_real_distribution<double> coord(-1, 1);
+    std::vector<Point3> pts;
+    for (int i = 0; i < nv; ++i) pts.push_back(Point3(coord(rng), coord(rng), round % 3 == 0 ? 0.0 : coord(rng)));
+    pts[1] = pts[0];  // a duplicated point
+    std::vector<std::array<int, 3>> faces;
+    for (int f = 0; f < 3 * nv; ++f) faces.push_back({pick(rng), pick(rng), pick(rng)});
+    TriMesh m;
+    test::build(m, pts, faces);
+    features::Params p;
+    p.min_patch_faces = 3;
+    auto r = detect(m, p);
+    ASSERT_EQ(r.patch_of_face.size(), faces.size());
+    for (int id : r.patch_of_face) {
+      EXPECT_GE(id, 0);
+      EXPECT_LT(id, r.patch_count);
+    }
+    size_t line_vertices = 0;
+    for (const auto& line : r.lines) line_vertices += line.vertices.size();
+    EXPECT_LE(r.lines.size(), size_t(r.ridge_edges));
+    EXPECT_GE(line_vertices, r.lines.size());
+  }
 }
