@@ -1,7 +1,7 @@
 """Our filters in the real MeshLab 2025.07 desktop application, driven under Xvfb.
 
 scripts/test builds the application once (scripts/meshlab --build-only, cached in
-build-meshlab-gui/). Set MESHREGRID_SKIP_GUI=1 where no display server can be installed.
+~/.cache/meshregrid or $MESHREGRID_CACHE_DIR). Set MESHREGRID_SKIP_GUI=1 where no display server can be installed.
 A screenshot of the Filters menu is kept in test-artifacts/.
 """
 import os
@@ -17,7 +17,6 @@ import pytest
 import meshregrid
 from conftest import REPO, shared_mesh
 
-GUI_EXE = REPO / "build-meshlab-gui" / "src" / "distrib" / "meshlab"
 LISTER = pathlib.Path(meshregrid.plugin_dir()).parent / "tests" / "gui" / "list_meshlab_filters"
 ARTIFACTS = REPO / "test-artifacts"
 
@@ -66,15 +65,20 @@ class MeshLabWindow:
     def main_window(self):
         return wait_for(lambda: self.visible_window("MeshLab 2025.07d"), 60, "the MeshLab main window")
 
-    def open_filter_by_search(self, menu_name):
+    def open_filter_by_search(self, menu_name, attempts=3):
         """Types the filter's name into MeshLab's action search and opens its dialog."""
-        x, y, w, _ = self.geometry(self.main_window())
-        self.click(x + w - 22, y + 46)  # the search button at the right end of the toolbar
-        time.sleep(0.5)
-        self.xdo("type", "--delay", "30", menu_name)
-        time.sleep(0.5)
-        self.xdo("key", "Down", "Return")
-        return wait_for(lambda: self.visible_window(menu_name), 20, f"the dialog of {menu_name!r}")
+        for attempt in range(attempts):
+            x, y, w, _ = self.geometry(self.main_window())
+            self.click(x + w - 22, y + 46)  # the search button at the right end of the toolbar
+            time.sleep(0.5 + attempt)
+            self.xdo("type", "--delay", "30", menu_name)
+            time.sleep(0.5 + attempt)
+            self.xdo("key", "Down", "Return")
+            try:
+                return wait_for(lambda: self.visible_window(menu_name), 10, f"the dialog of {menu_name!r}")
+            except AssertionError:
+                self.xdo("key", "Escape", "Escape")  # close a search menu left open, then retry
+        raise AssertionError(f"MeshLab's search did not open {menu_name!r} in {attempts} attempts")
 
     def press_dialog_button(self, dialog, which):
         x, y, w, h = self.geometry(dialog)
@@ -86,8 +90,12 @@ def meshlab(tmp_path_factory):
     for tool in ("Xvfb", "xdotool", "import"):
         if not shutil.which(tool):
             pytest.fail(f"{tool} missing: run scripts/meshlab --build-only (or set MESHREGRID_SKIP_GUI=1)")
-    if not GUI_EXE.is_file():
-        pytest.fail(f"{GUI_EXE} not built: run scripts/meshlab --build-only (or set MESHREGRID_SKIP_GUI=1)")
+    # Returns at once when the cached build exists (scripts/test built it before pytest).
+    built = subprocess.run([str(REPO / "scripts" / "meshlab"), "--build-only"], capture_output=True, text=True,
+                           timeout=3600)
+    if built.returncode != 0:
+        pytest.fail(f"the MeshLab GUI could not be built:\n{built.stderr[-3000:]}")
+    gui_exe = pathlib.Path(built.stdout.strip().splitlines()[-1])
     home = tmp_path_factory.mktemp("meshlab-home")
     plugins = home / "data" / "VCG" / "MeshLab_64bit_dp" / "MeshLabExtraPlugins" / "2025.07d"
     plugins.mkdir(parents=True)
@@ -105,7 +113,7 @@ def meshlab(tmp_path_factory):
     env.pop("QT_QPA_PLATFORM", None)
     log_path = home / "meshlab.log"
     with open(log_path, "w") as log:
-        app = subprocess.Popen([str(GUI_EXE), str(shared_mesh("cad/part.off"))], env=env, stdout=log,
+        app = subprocess.Popen([str(gui_exe), str(shared_mesh("cad/part.off"))], env=env, stdout=log,
                                stderr=subprocess.STDOUT)
     window = MeshLabWindow(env, log_path)
     try:
