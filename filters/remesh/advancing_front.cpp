@@ -1,0 +1,332 @@
+#include "remesh/advancing_front.h"
+
+#include "remesh/triangle_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <queue>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace mr::remesh {
+
+double front_priority(double side_length, int failures) { return side_length * (1.0 + 2.0 * failures); }
+
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
+
+struct Side {
+  int a, b;
+  int failures = 0;
+  bool alive = true;
+};
+
+// Front points in a hash grid; entries are never removed, callers skip points off the front.
+class PointGrid {
+public:
+  explicit PointGrid(double cell) : cell_(cell) {}
+  void add(int id, const Point3& p) { cells_[key(p)].push_back(id); }
+  template <class F> void for_each_near(const Point3& p, double r, F&& f) const {
+    const long n = long(std::ceil(r / cell_));
+    const auto c = coords(p);
+    for (long i = c[0] - n; i <= c[0] + n; ++i)
+      for (long j = c[1] - n; j <= c[1] + n; ++j)
+        for (long k = c[2] - n; k <= c[2] + n; ++k) {
+          auto it = cells_.find(pack(i, j, k));
+          if (it == cells_.end()) continue;
+          for (int id : it->second) f(id);
+        }
+  }
+
+private:
+  std::array<long, 3> coords(const Point3& p) const {
+    return {long(std::floor(p[0] / cell_)), long(std::floor(p[1] / cell_)), long(std::floor(p[2] / cell_))};
+  }
+  static std::int64_t pack(long i, long j, long k) {
+    return (std::int64_t(i & 0x1FFFFF) << 42) | (std::int64_t(j & 0x1FFFFF) << 21) | std::int64_t(k & 0x1FFFFF);
+  }
+  std::int64_t key(const Point3& p) const { auto c = coords(p); return pack(c[0], c[1], c[2]); }
+  double cell_;
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+};
+
+class PatchMesher {
+public:
+  PatchMesher(OutputMesh& out, int patch, const SurfaceLocator& locator, const SizeField& size,
+              const FrontParams& params)
+      : out_(out), patch_(patch), loc_(locator), size_(size), params_(params),
+        grid_(std::max(size.max_size(), 1e-300)) {}
+
+  FrontResult run(std::vector<FrontSide> front);
+
+private:
+  struct Local { int host = -1; Point3 normal; int degree = 0; std::vector<int> sides; };
+  Local& local(int v);
+  void add_side(int a, int b, int failures = 0);
+  void remove_side(int s);
+  bool try_side(int s);
+  bool valid_triangle(int a, int b, const Point3& q, int q_id, const TangentFrame& frame, double h,
+                      double min_angle_rad, const std::vector<int>& near_points) const;
+  void add_triangle(int a, int b, int c);
+  void seed_triangle();
+  double estimated_faces() const;
+
+  OutputMesh& out_;
+  int patch_;
+  const SurfaceLocator& loc_;
+  const SizeField& size_;
+  FrontParams params_;
+  PointGrid grid_;
+  std::unordered_map<int, Local> locals_;
+  std::vector<Side> sides_;
+  std::unordered_map<std::uint64_t, int> front_;   // directed side -> index in sides_
+  std::unordered_set<std::uint64_t> used_;          // directed sides of generated faces
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue_;
+  FrontResult result_;
+};
+
+PatchMesher::Local& PatchMesher::local(int v) {
+  auto it = locals_.find(v);
+  if (it != locals_.end()) return it->second;
+  Local l;
+  const Projection pr = loc_.locate(out_.points[v], patch_, Point3(0, 0, 0), out_.host[v], size_.max_size(), nullptr);
+  l.host = pr.face;
+  l.normal = pr.face >= 0 ? loc_.surface().face_normal[pr.face] : Point3(0, 0, 0);
+  grid_.add(v, out_.points[v]);
+  return locals_.emplace(v, std::move(l)).first->second;
+}
+
+void PatchMesher::add_side(int a, int b, int failures) {
+  Side s{a, b, failures, true};
+  const int id = int(sides_.size());
+  sides_.push_back(s);
+  front_[directed(a, b)] = id;
+  for (int v : {a, b}) { Local& l = local(v); l.degree++; l.sides.push_back(id); }
+  queue_.push({front_priority((out_.points[a] - out_.points[b]).Norm(), failures), id});
+}
+
+void PatchMesher::remove_side(int s) {
+  Side& side = sides_[s];
+  side.alive = false;
+  front_.erase(directed(side.a, side.b));
+  for (int v : {side.a, side.b}) {
+    Local& l = local(v);
+    l.degree--;
+    l.sides.erase(std::remove(l.sides.begin(), l.sides.end(), s), l.sides.end());
+  }
+}
+
+void PatchMesher::add_triangle(int a, int b, int c) {
+  out_.faces.push_back({a, b, c});
+  out_.face_patch.push_back(patch_);
+  result_.faces++;
+  const int tri[3] = {a, b, c};
+  for (int z = 0; z < 3; ++z) {
+    const int x = tri[z], y = tri[(z + 1) % 3];
+    used_.insert(directed(x, y));
+    auto it = front_.find(directed(x, y));
+    if (it != front_.end()) remove_side(it->second);
+    else add_side(y, x);
+  }
+}
+
+// Is triangle (a,b,q) acceptable? All 2D tests run in the tangent plane of the host face of ab.
+bool PatchMesher::valid_triangle(int a, int b, const Point3& q, int q_id, const TangentFrame& frame, double h,
+                                 double min_angle_rad, const std::vector<int>& near_points) const {
+  const Point3 &pa = out_.points[a], &pb = out_.points[b];
+  const vcg::Point2d a2 = frame.to_2d(pa), b2 = frame.to_2d(pb), q2 = frame.to_2d(q);
+  const double L = (pb - pa).Norm();
+  if (orient_2d(a2, b2, q2) <= 1e-6 * L * L) return false;       // q must lie ahead of the side
+  if (min_angle(pa, pb, q) < min_angle_rad) return false;
+  if (unit_normal(pa, pb, q) * frame.normal < 0.5) return false;  // folds over the surface
+  // Directed-side rules: a side of the new face either closes a front side or is new.
+  const int sides[2][2] = {{b, q_id}, {q_id, a}};
+  if (q_id >= 0) {
+    for (const auto& s : sides) {
+      const auto key = directed(s[0], s[1]);
+      if (front_.count(key)) continue;
+      if (used_.count(key) || front_.count(directed(s[1], s[0])) || used_.count(directed(s[1], s[0]))) return false;
+    }
+  }
+  // 2D crossing and containment against nearby front sides and points on the same side of the surface.
+  const double eps = 1e-9 * L * L;
+  const double reach = std::max({L, (q - pa).Norm(), (q - pb).Norm()}) + h;
+  for (int v : near_points) {
+    auto it = locals_.find(v);
+    if (it == locals_.end() || it->second.degree == 0) continue;
+    const Local& l = it->second;
+    if (l.normal * frame.normal <= 0.0) continue;  // the other side of a cusp or thin wall
+    const Point3& pv = out_.points[v];
+    if (std::abs((pv - frame.origin) * frame.normal) > reach) continue;
+    const vcg::Point2d v2 = frame.to_2d(pv);
+    if (v != a && v != b && v != q_id && strictly_inside_2d(v2, a2, b2, q2, eps)) return false;
+    for (int s : l.sides) {
+      const Side& side = sides_[s];
+      if (side.a != v) continue;  // each side once, from its first end
+      const int u = side.b;
+      auto iu = locals_.find(u);
+      if (iu != locals_.end() && iu->second.normal * frame.normal <= 0.0) continue;
+      const vcg::Point2d u2 = frame.to_2d(out_.points[u]);
+      auto touches = [&](int x, int y) { return x == v || x == u || y == v || y == u; };
+      if (!touches(a, q_id) && segments_cross_2d(a2, q2, v2, u2, eps)) return false;
+      if (!touches(q_id, b) && segments_cross_2d(q2, b2, v2, u2, eps)) return false;
+      // A new point must not sit on top of a front side either.
+      if (q_id < 0) {
+        const vcg::Point2d d = u2 - v2;
+        const double len2 = d.SquaredNorm();
+        if (len2 > 0) {
+          const double t = std::clamp(((q2 - v2) * d) / len2, 0.0, 1.0);
+          if ((v2 + d * t - q2).Norm() < 0.3 * h) return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+bool PatchMesher::try_side(int s) {
+  const int a = sides_[s].a, b = sides_[s].b, failures = sides_[s].failures;
+  const Point3 &pa = out_.points[a], &pb = out_.points[b];
+  const double L = (pb - pa).Norm();
+  const Point3 mid = (pa + pb) * 0.5;
+  const Local &la = local(a), &lb = local(b);
+  const Projection host = loc_.locate(mid, patch_, la.normal + lb.normal, la.host >= 0 ? la.host : lb.host,
+                                      L + size_.max_size());
+  if (host.face < 0) return false;
+  const Point3 normal = loc_.surface().face_normal[host.face];
+  const TangentFrame frame(mid, pb - pa, normal);
+  const double h = size_.at(host.face, host.bary);
+  const double hs = std::clamp(h, 0.7 * L, 1.6 * L);
+  double height = std::sqrt(std::max(hs * hs - 0.25 * L * L, 0.0));
+  if (failures >= 2) height *= 0.6;
+
+  // The ideal point for a well-shaped face, projected onto the patch.
+  const Point3 ideal = mid + frame.e2 * height;
+  const Projection proj = loc_.locate(ideal, patch_, normal, host.face, 2 * hs + h);
+  const bool have_new = proj.face >= 0 && loc_.surface().face_normal[proj.face] * normal > 0.5;
+  const Point3 p_new = have_new ? proj.point : ideal;
+
+  const double radius = std::max(hs, L) * (2.0 + failures);
+  std::vector<int> near;
+  grid_.for_each_near(mid, radius + hs, [&](int v) {
+    auto it = locals_.find(v);
+    if (it != locals_.end() && it->second.degree > 0) near.push_back(v);
+  });
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+
+  // Candidates: existing front points by distance to the ideal point, the new point in between.
+  const double accept_radius = params_.prefer_existing * hs * (1.0 + 0.7 * failures);
+  std::vector<std::pair<double, int>> existing;
+  double closest_to_new = std::numeric_limits<double>::max();
+  for (int v : near) {
+    if (v == a || v == b) continue;
+    const Local& l = locals_.at(v);
+    if (l.normal * normal <= 0.5) continue;  // cusp filter by normals
+    const double d = (out_.points[v] - p_new).Norm();
+    closest_to_new = std::min(closest_to_new, d);
+    if ((out_.points[v] - mid).Norm() <= radius) existing.push_back({d, v});
+  }
+  std::sort(existing.begin(), existing.end());
+  const double min_angle_rad = (failures == 0 ? 20.0 : failures == 1 ? 10.0 : failures == 2 ? 3.0 : 0.5) * kDeg;
+  const bool new_allowed = have_new && closest_to_new >= params_.min_point_distance * hs;
+
+  auto accept = [&](int q) {
+    add_triangle(a, b, q);
+    return true;
+  };
+  size_t k = 0;
+  for (; k < existing.size() && existing[k].first <= accept_radius; ++k) {
+    const int q = existing[k].second;
+    if (valid_triangle(a, b, out_.points[q], q, frame, h, min_angle_rad, near)) return accept(q);
+  }
+  if (new_allowed && valid_triangle(a, b, p_new, -1, frame, h, std::min(min_angle_rad, 20.0 * kDeg), near)) {
+    const int q = out_.add_point(p_new, proj.face, PointKind::Free);
+    result_.new_points++;
+    local(q);
+    return accept(q);
+  }
+  for (; k < existing.size(); ++k) {
+    const int q = existing[k].second;
+    if (valid_triangle(a, b, out_.points[q], q, frame, h, min_angle_rad, near)) return accept(q);
+  }
+  return false;
+}
+
+void PatchMesher::seed_triangle() {
+  // The largest face of the patch hosts an equilateral triangle of the local size.
+  const Surface& s = loc_.surface();
+  int best = -1;
+  double best_area = -1;
+  for (int f = 0; f < int(s.faces.size()); ++f) {
+    if (s.group[f] != patch_) continue;
+    const auto& t = s.faces[f];
+    const double area = ((s.points[t[1]] - s.points[t[0]]) ^ (s.points[t[2]] - s.points[t[0]])).Norm();
+    if (area > best_area) { best_area = area; best = f; }
+  }
+  if (best < 0) return;
+  const auto& t = s.faces[best];
+  const Point3 centre = (s.points[t[0]] + s.points[t[1]] + s.points[t[2]]) / 3.0;
+  const double h = size_.at(best, {1.0 / 3, 1.0 / 3, 1.0 / 3});
+  const TangentFrame frame(centre, s.points[t[1]] - s.points[t[0]], s.face_normal[best]);
+  int ids[3];
+  for (int k = 0; k < 3; ++k) {
+    const double angle = (90.0 + 120.0 * k) * kDeg;
+    const Point3 p = centre + (frame.e1 * std::cos(angle) + frame.e2 * std::sin(angle)) * (h / std::sqrt(3.0));
+    const Projection pr = loc_.locate(p, patch_, s.face_normal[best], best, 2 * h);
+    ids[k] = out_.add_point(pr.face >= 0 ? pr.point : p, pr.face >= 0 ? pr.face : best, PointKind::Free);
+    result_.new_points++;
+  }
+  add_triangle(ids[0], ids[1], ids[2]);
+}
+
+double PatchMesher::estimated_faces() const {
+  const Surface& s = loc_.surface();
+  double area = 0;
+  for (size_t f = 0; f < s.faces.size(); ++f)
+    if (s.group[f] == patch_) {
+      const auto& t = s.faces[f];
+      area += 0.5 * ((s.points[t[1]] - s.points[t[0]]) ^ (s.points[t[2]] - s.points[t[0]])).Norm();
+    }
+  const double h = std::max(size_.min_size(), 1e-300);
+  return area / (0.25 * std::sqrt(3.0) * h * h);
+}
+
+FrontResult PatchMesher::run(std::vector<FrontSide> front) {
+  for (const auto& s : front)
+    if (s[0] != s[1] && !front_.count(directed(s[0], s[1]))) add_side(s[0], s[1]);
+  if (front_.empty()) seed_triangle();
+  const double limit = 20.0 * (estimated_faces() + double(sides_.size())) + 1000.0;
+  while (!queue_.empty()) {
+    if (++result_.iterations > limit) { result_.iteration_limit = true; break; }
+    const auto [priority, s] = queue_.top();
+    queue_.pop();
+    (void)priority;
+    if (!sides_[s].alive) continue;
+    if (try_side(s)) continue;
+    // No valid face: retry later with relaxed checks, or give up on this side.
+    if (sides_[s].failures < params_.max_retries) {
+      sides_[s].failures++;
+      const double len = (out_.points[sides_[s].a] - out_.points[sides_[s].b]).Norm();
+      queue_.push({front_priority(len, sides_[s].failures), s});
+    }
+  }
+  result_.unmeshed_sides = int(front_.size());
+  return result_;
+}
+
+}  // namespace
+
+FrontResult advance_front(OutputMesh& out, std::vector<FrontSide> front, int patch, const SurfaceLocator& locator,
+                          const SizeField& size, const FrontParams& params) {
+  PatchMesher mesher(out, patch, locator, size, params);
+  return mesher.run(std::move(front));
+}
+
+}  // namespace mr::remesh

@@ -1,0 +1,130 @@
+#include "remesh/feature_front.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace mr::remesh {
+
+namespace {
+
+// Faces around each vertex (CSR).
+struct VertexFaces {
+  std::vector<int> begin, face;
+  explicit VertexFaces(const Surface& s) : begin(s.points.size() + 1, 0) {
+    for (const auto& f : s.faces) for (int v : f) begin[v + 1]++;
+    for (size_t i = 1; i < begin.size(); ++i) begin[i] += begin[i - 1];
+    face.resize(begin.back());
+    std::vector<int> fill(begin.begin(), begin.end() - 1);
+    for (size_t f = 0; f < s.faces.size(); ++f) for (int v : s.faces[f]) face[fill[v]++] = int(f);
+  }
+};
+
+// Integral of 1/h along each segment (h linear along the segment, trapezoid of the ends).
+std::vector<double> normalised_lengths(const std::vector<double>& lengths, const std::vector<double>& sizes) {
+  std::vector<double> out(lengths.size());
+  for (size_t j = 0; j < lengths.size(); ++j) out[j] = lengths[j] / std::max(0.5 * (sizes[j] + sizes[j + 1]), 1e-300);
+  return out;
+}
+
+}  // namespace
+
+int segment_count(const std::vector<double>& lengths, const std::vector<double>& sizes, int min_segments) {
+  double total = 0;
+  for (double x : normalised_lengths(lengths, sizes)) total += x;
+  return std::max(int(std::lround(total)), min_segments);
+}
+
+FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr, const Surface& s,
+                                 const SizeField& size, OutputMesh& out) {
+  (void)mesh;
+  FeatureFront ff;
+  ff.patch_front.resize(fr.patch_count);
+  const VertexFaces vf(s);
+  std::map<int, int> corner_point;
+  for (int c : fr.corners) {
+    const int host = vf.begin[c] < vf.begin[c + 1] ? vf.face[vf.begin[c]] : -1;
+    corner_point[c] = out.add_point(s.points[c], host, PointKind::Corner);
+    ff.corner_point.push_back(corner_point[c]);
+  }
+  // Open lines that share both end corners with another line need two segments, or their
+  // chords would coincide.
+  std::map<std::pair<int, int>, int> end_pairs;
+  for (const auto& line : fr.lines)
+    if (!line.closed) {
+      auto key = std::minmax(line.vertices.front(), line.vertices.back());
+      end_pairs[{key.first, key.second}]++;
+    }
+
+  for (const auto& line : fr.lines) {
+    std::vector<int> chain = line.vertices;
+    if (line.closed) chain.push_back(chain.front());
+    if (chain.size() < 2) continue;
+    const size_t segs = chain.size() - 1;
+    std::vector<double> lengths(segs), sizes(chain.size());
+    for (size_t j = 0; j < segs; ++j) lengths[j] = (s.points[chain[j + 1]] - s.points[chain[j]]).Norm();
+    for (size_t j = 0; j < chain.size(); ++j) sizes[j] = size.at_vertex(chain[j]);
+    int min_segments = 1;
+    if (line.closed) min_segments = 3;
+    else {
+      auto key = std::minmax(chain.front(), chain.back());
+      if (end_pairs[{key.first, key.second}] > 1 || chain.front() == chain.back()) min_segments = 2;
+    }
+    const int n = segment_count(lengths, sizes, min_segments);
+    const std::vector<double> w = normalised_lengths(lengths, sizes);
+    std::vector<double> cumulative(segs + 1, 0.0);
+    for (size_t j = 0; j < segs; ++j) cumulative[j + 1] = cumulative[j] + w[j];
+    const double total = cumulative.back();
+    // Input segment and point at normalised arc length t (a fraction of the line).
+    auto locate_on_line = [&](double t, size_t& seg, double& u) {
+      const double target = t * total;
+      seg = std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin();
+      seg = std::clamp<size_t>(seg, 1, segs) - 1;
+      u = w[seg] > 0 ? std::clamp((target - cumulative[seg]) / w[seg], 0.0, 1.0) : 0.0;
+    };
+    // Points: the ends are corners (or the start of a closed line), the rest lie on the polyline.
+    std::vector<int> pts(n + 1);
+    auto end_point = [&](int v) {
+      auto it = corner_point.find(v);
+      if (it != corner_point.end()) return it->second;
+      const int host = vf.begin[v] < vf.begin[v + 1] ? vf.face[vf.begin[v]] : -1;
+      return out.add_point(s.points[v], host, PointKind::Line);
+    };
+    pts[0] = end_point(chain.front());
+    for (int i = 1; i < n; ++i) {
+      size_t seg; double u;
+      locate_on_line(double(i) / n, seg, u);
+      const Point3 p = s.points[chain[seg]] * (1 - u) + s.points[chain[seg + 1]] * u;
+      const int v0 = chain[seg];
+      const int host = vf.begin[v0] < vf.begin[v0 + 1] ? vf.face[vf.begin[v0]] : -1;
+      pts[i] = out.add_point(p, host, PointKind::Line);
+    }
+    pts[n] = line.closed ? pts[0] : end_point(chain.back());
+
+    for (int i = 0; i < n; ++i) {
+      ff.feature_edges.push_back({pts[i], pts[i + 1]});
+      size_t seg; double u;
+      locate_on_line((i + 0.5) / n, seg, u);
+      const int va = chain[seg], vb = chain[seg + 1];
+      // Each face on this input edge puts the output side into its patch's front, oriented
+      // the way that face runs the edge (so the patch lies to the side's left).
+      std::set<std::pair<int, int>> added;
+      for (int k = vf.begin[va]; k < vf.begin[va + 1]; ++k) {
+        const int f = vf.face[k];
+        const auto& t = s.faces[f];
+        for (int z = 0; z < 3; ++z) {
+          const int x = t[z], y = t[(z + 1) % 3];
+          if (x == va && y == vb) {
+            if (added.insert({s.group[f], 0}).second) ff.patch_front[s.group[f]].push_back({pts[i], pts[i + 1]});
+          } else if (x == vb && y == va) {
+            if (added.insert({s.group[f], 1}).second) ff.patch_front[s.group[f]].push_back({pts[i + 1], pts[i]});
+          }
+        }
+      }
+    }
+  }
+  return ff;
+}
+
+}  // namespace mr::remesh

@@ -1,0 +1,30 @@
+// Feature lines re-discretised with the size field (points on the input polyline,
+// corners kept exactly) and the initial front of every patch built from them
+// (Löhner 1996, section 3: the lines are meshed first and bound the patches).
+#pragma once
+
+#include "features/feature_lines.h"
+#include "remesh/advancing_front.h"
+#include "remesh/output_mesh.h"
+#include "remesh/size_field.h"
+
+#include <array>
+#include <vector>
+
+namespace mr::remesh {
+
+struct FeatureFront {
+  std::vector<std::vector<FrontSide>> patch_front;  ///< per patch, oriented like its input faces
+  std::vector<std::array<int, 2>> feature_edges;    ///< output edges along the lines
+  std::vector<int> corner_point;                    ///< output point of each input corner (same order)
+};
+
+/// Number of segments for a polyline of `lengths` whose vertices have sizes `sizes`
+/// (one more than lengths): the size-weighted length rounded, at least `min_segments`.
+int segment_count(const std::vector<double>& lengths, const std::vector<double>& sizes, int min_segments);
+
+/// Appends corner and line points to `out` and returns the patch fronts.
+FeatureFront discretise_features(const TriMesh& mesh, const features::Result& features, const Surface& surface,
+                                 const SizeField& size, OutputMesh& out);
+
+}  // namespace mr::remesh

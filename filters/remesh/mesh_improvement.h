@@ -1,0 +1,24 @@
+// A short post-pass that only improves (Löhner 1996, section 3.6): edge swaps and
+// smoothing of free points projected back onto the input. Every move raises the
+// smallest angle of the faces it touches, so the minimum angle never drops; feature
+// edges are never swapped and line and corner points never move.
+#pragma once
+
+#include "remesh/output_mesh.h"
+#include "remesh/surface_locator.h"
+
+#include <array>
+#include <vector>
+
+namespace mr::remesh {
+
+struct ImprovementResult {
+  int swaps = 0;
+  int moves = 0;
+};
+
+/// `feature_edges` are output edges that must stay (either orientation).
+ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
+                               const SurfaceLocator& locator, int iterations);
+
+}  // namespace mr::remesh

@@ -1,0 +1,51 @@
+#include "remesh/mesh_measures.h"
+
+#include "remesh/triangle_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace mr::remesh {
+
+Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, const SizeField& size) {
+  Measures m;
+  constexpr double kRad = 180.0 / 3.14159265358979323846;
+  if (out.faces.empty()) return m;
+  double worst = 1e9, sum = 0;
+  std::set<std::pair<int, int>> edges;
+  for (const auto& f : out.faces) {
+    const double a = min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]);
+    worst = std::min(worst, a);
+    sum += a;
+    for (int z = 0; z < 3; ++z) edges.insert(std::minmax(f[z], f[(z + 1) % 3]));
+  }
+  m.min_angle_deg = worst * kRad;
+  m.mean_min_angle_deg = sum / double(out.faces.size()) * kRad;
+  const double reach = 4 * size.max_size();
+  long in_range = 0;
+  double haus = 0;
+  for (const auto& e : edges) {
+    const Point3 mid = (out.points[e.first] + out.points[e.second]) * 0.5;
+    const Projection pr = input_locator.locate(mid, -1, Point3(0, 0, 0), out.host[e.first], reach);
+    const double h = pr.face >= 0 ? size.at(pr.face, pr.bary) : size.max_size();
+    const double len = (out.points[e.first] - out.points[e.second]).Norm();
+    if (len >= 0.7 * h && len <= 1.4 * h) in_range++;
+    haus = std::max(haus, pr.distance);
+  }
+  m.edges_in_range = double(in_range) / double(edges.size());
+  for (size_t f = 0; f < out.faces.size(); ++f) {
+    const auto& t = out.faces[f];
+    const Point3 c = (out.points[t[0]] + out.points[t[1]] + out.points[t[2]]) / 3.0;
+    haus = std::max(haus, input_locator.locate(c, -1, Point3(0, 0, 0), out.host[t[0]], reach).distance);
+  }
+  // Input vertices to the output surface.
+  const Surface output = Surface::from_arrays(out.points, out.faces, {});
+  const SurfaceLocator out_locator(output, size.max_size());
+  const Surface& in = input_locator.surface();
+  for (const auto& p : in.points) haus = std::max(haus, out_locator.locate(p, -1, Point3(0, 0, 0), -1, reach).distance);
+  m.hausdorff = haus;
+  return m;
+}
+
+}  // namespace mr::remesh

@@ -1,0 +1,18 @@
+// Quality measurements of the output reported by the filter.
+#pragma once
+
+#include "remesh/output_mesh.h"
+#include "remesh/size_field.h"
+#include "remesh/surface_locator.h"
+
+namespace mr::remesh {
+
+struct Measures {
+  double min_angle_deg = 0, mean_min_angle_deg = 0, edges_in_range = 0, hausdorff = 0;
+};
+
+/// Angles, the share of edges within [0.7,1.4] x the local size, and a two-sided Hausdorff
+/// estimate between `out` and the input surface of `input_locator`.
+Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, const SizeField& size);
+
+}  // namespace mr::remesh

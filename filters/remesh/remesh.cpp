@@ -1,0 +1,131 @@
+#include "remesh/remesh.h"
+
+#include "common/errors.h"
+#include "common/mesh_validation.h"
+#include "features/feature_lines.h"
+#include "remesh/advancing_front.h"
+#include "remesh/feature_front.h"
+#include "remesh/mesh_improvement.h"
+#include "remesh/mesh_measures.h"
+#include "remesh/output_mesh.h"
+#include "remesh/size_field.h"
+#include "remesh/surface_locator.h"
+#include "remesh/surface_recovery.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace mr::remesh {
+
+namespace {
+
+void check_params(const Params& p, double diagonal) {
+  if (!(p.target_length > 0) || !std::isfinite(p.target_length))
+    throw InvalidInput("target_length must be > 0, got " + std::to_string(p.target_length) +
+                       "; give an absolute length or a percentage of the bounding-box diagonal (1% is typical)");
+  if (p.target_length > diagonal)
+    throw InvalidInput("target_length " + std::to_string(p.target_length) + " is larger than the model (bounding-box diagonal " +
+                       std::to_string(diagonal) + "); choose a length below the diagonal, e.g. 1% of it");
+  if (diagonal / p.target_length > 1e5)
+    throw InvalidInput("target_length is too small: it would make more than about 10^10 faces; use at least 1e-5 of the diagonal");
+  if (!(p.max_surface_error >= 0)) throw InvalidInput("max_surface_error must be >= 0 (0 turns curvature adaptation off)");
+  if (!(p.gradation >= 1.0)) throw InvalidInput("gradation must be >= 1, got " + std::to_string(p.gradation));
+  if (p.improvement_iterations < 0) throw InvalidInput("improvement_iterations must be >= 0");
+  if (p.source_points.size() != p.source_sizes.size()) throw InvalidInput("one size per source point is needed");
+}
+
+void progress(const Params& p, int percent, const char* what) {
+  if (p.progress) p.progress(percent, what);
+}
+
+void build_output(const OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges, TriMesh& m) {
+  m.Clear();
+  // Only points used by a face go out (a point of a line between two unmeshed patches would not).
+  std::vector<int> index(out.points.size(), -1);
+  int n = 0;
+  for (const auto& f : out.faces) for (int v : f) if (index[v] < 0) index[v] = n++;
+  auto vi = vcg::tri::Allocator<TriMesh>::AddVertices(m, n);
+  (void)vi;
+  for (size_t v = 0; v < out.points.size(); ++v)
+    if (index[v] >= 0) {
+      m.vert[index[v]].P() = out.points[v];
+      if (out.kind[v] == PointKind::Corner) m.vert[index[v]].SetS();
+    }
+  vcg::tri::Allocator<TriMesh>::AddFaces(m, out.faces.size());
+  std::set<std::pair<int, int>> features;
+  for (const auto& e : feature_edges) features.insert(std::minmax(e[0], e[1]));
+  for (size_t f = 0; f < out.faces.size(); ++f)
+    for (int z = 0; z < 3; ++z) {
+      const int a = out.faces[f][z], b = out.faces[f][(z + 1) % 3];
+      m.face[f].V(z) = &m.vert[index[a]];
+      if (features.count(std::minmax(a, b))) m.face[f].SetFaceEdgeS(z);
+    }
+  m.bbox.SetNull();
+  for (const auto& v : m.vert) m.bbox.Add(v.cP());
+}
+
+}  // namespace
+
+Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
+  require_triangle_surface(input);
+  Box3 box;
+  for (const auto& v : input.vert) box.Add(v.cP());
+  Result result;
+  result.diagonal = box.Diag();
+  check_params(params, result.diagonal);
+
+  progress(params, 2, "Detecting feature lines and patches");
+  features::Params fp;
+  fp.ridge_angle_deg = params.ridge_angle_deg;
+  fp.corner_angle_deg = params.corner_angle_deg;
+  const features::Result fr = features::detect(input, fp);
+  result.corners = int(fr.corners.size());
+  result.lines = int(fr.lines.size());
+  result.patches = fr.patch_count;
+
+  progress(params, 8, "Building the size field and the surface index");
+  const Surface surface = Surface::from_mesh(input, fr.patch_of_face);
+  SizeParams sp;
+  sp.target_length = params.target_length;
+  sp.max_surface_error = params.max_surface_error;
+  sp.gradation = params.gradation;
+  sp.source_points = params.source_points;
+  sp.source_sizes = params.source_sizes;
+  const SizeField size(surface, sp);
+  const SurfaceLocator locator(surface, params.target_length);
+
+  progress(params, 12, "Discretising feature lines");
+  OutputMesh out;
+  const FeatureFront ff = discretise_features(input, fr, surface, size, out);
+  result.feature_edges = int(ff.feature_edges.size());
+
+  for (int patch = 0; patch < fr.patch_count; ++patch) {
+    progress(params, 15 + int(65.0 * patch / std::max(fr.patch_count, 1)), "Advancing the front");
+    const FrontResult r = advance_front(out, ff.patch_front[patch], patch, locator, size);
+    result.unmeshed_sides += r.unmeshed_sides;
+    if (r.unmeshed_sides > 0 || r.iteration_limit) result.unmeshed_patches++;
+  }
+
+  progress(params, 80, "Improving: swaps and smoothing");
+  const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations);
+  result.swaps = ir.swaps;
+  result.smoothed = ir.moves;
+
+  progress(params, 88, "Surface recovery");
+  recover_surface(out, surface, params.recovery);
+
+  progress(params, 92, "Measuring");
+  const Measures m = measure(out, locator, size);
+  result.min_angle_deg = m.min_angle_deg;
+  result.mean_min_angle_deg = m.mean_min_angle_deg;
+  result.edges_in_range = m.edges_in_range;
+  result.hausdorff = m.hausdorff;
+  build_output(out, ff.feature_edges, output);
+  progress(params, 100, "Done");
+  return result;
+}
+
+}  // namespace mr::remesh

@@ -1,0 +1,58 @@
+// Advancing-front regridding of a triangulated surface, after
+// R. Löhner, "Regridding Surface Triangulations", J. Comput. Phys. 126 (1996).
+// Feature lines from stage 1 are re-discretised first (corners kept exactly, line
+// points on the input polylines); each patch is then filled by an advancing front
+// on the discrete surface, so no face crosses a ridge.
+#pragma once
+
+#include "common/tri_mesh.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace mr::remesh {
+
+/// Post-generation surface recovery (section 4 of the paper).
+enum class Recovery {
+  Linear = 0,         ///< points stay on the input triangles
+  ClosestVertex = 1,  ///< free points move to the closest input vertex of their host face
+  Quadratic = 2,      ///< quadratic triangles with Hermite mid-side points from vertex normals
+  Cubic = 3           ///< cubic triangles from vertex positions and normals
+};
+
+struct Params {
+  double target_length = 0;        ///< absolute element size (> 0, below the bbox diagonal)
+  double ridge_angle_deg = 30.0;   ///< stage 1 ridge angle
+  double corner_angle_deg = 45.0;  ///< stage 1 corner angle
+  double max_surface_error = 0;    ///< chord-error bound for curvature adaptation (0 = uniform)
+  double gradation = 1.3;          ///< size growth limit per element (>= 1)
+  Recovery recovery = Recovery::Linear;
+  int improvement_iterations = 3;  ///< swap and smoothing sweeps (0 = off)
+  std::vector<Point3> source_points;  ///< point sources of size
+  std::vector<double> source_sizes;
+  /// Progress in percent with a message; may be empty.
+  std::function<void(int, const char*)> progress;
+};
+
+struct Result {
+  int corners = 0, lines = 0, patches = 0;
+  int feature_edges = 0;
+  int unmeshed_sides = 0;       ///< front sides that could not be closed (0 = complete)
+  int unmeshed_patches = 0;     ///< patches with unmeshed sides
+  int swaps = 0, smoothed = 0;  ///< post-pass moves
+  double min_angle_deg = 0;     ///< worst triangle angle
+  double mean_min_angle_deg = 0;  ///< mean over triangles of their smallest angle
+  double edges_in_range = 0;    ///< share of edges with length in [0.7,1.4] x local size
+  double hausdorff = 0;         ///< two-sided estimate (vertices, edge midpoints, centroids), absolute
+  double diagonal = 0;          ///< input bbox diagonal
+};
+
+/// Remeshes `input` (not modified) into `output` (cleared first): feature edges are flagged
+/// with FaceEdgeS, corners are selected vertices.
+/// \pre input is compact.
+/// \throw InvalidInput on empty input, a point cloud, NaN coordinates, a target length <= 0 or
+///        larger than the bbox diagonal, or other bad parameters.
+Result remesh(const TriMesh& input, const Params& params, TriMesh& output);
+
+}  // namespace mr::remesh

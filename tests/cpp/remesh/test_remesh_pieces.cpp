@@ -1,0 +1,123 @@
+// Unit tests of the remesher's pieces.
+#include "remesh/advancing_front.h"
+#include "remesh/size_field.h"
+#include "remesh/surface_locator.h"
+#include "remesh/triangle_geometry.h"
+#include "shapes.h"
+
+#include <gtest/gtest.h>
+
+using namespace mr;
+using namespace mr::remesh;
+using P2 = vcg::Point2d;
+
+TEST(RemeshPieces, CrossingCheck2D) {
+  EXPECT_TRUE(segments_cross_2d(P2(0, 0), P2(2, 2), P2(0, 2), P2(2, 0), 1e-12));
+  EXPECT_FALSE(segments_cross_2d(P2(0, 0), P2(1, 1), P2(0, 2), P2(2, 2), 1e-12));
+  // Sharing an end point is not a crossing.
+  EXPECT_FALSE(segments_cross_2d(P2(0, 0), P2(1, 0), P2(1, 0), P2(2, 1), 1e-12));
+  // A T touching the interior is not a proper crossing but collinear overlap is.
+  EXPECT_TRUE(segments_cross_2d(P2(0, 0), P2(2, 0), P2(1, 0), P2(3, 0), 1e-12));
+  EXPECT_FALSE(segments_cross_2d(P2(0, 0), P2(1, 0), P2(2, 0), P2(3, 0), 1e-12));
+  EXPECT_TRUE(strictly_inside_2d(P2(0.2, 0.2), P2(0, 0), P2(1, 0), P2(0, 1), 1e-12));
+  EXPECT_FALSE(strictly_inside_2d(P2(0.5, 0.5), P2(0, 0), P2(1, 0), P2(0, 1), 1e-12));
+}
+
+TEST(RemeshPieces, ClosestPointOnTriangle) {
+  std::array<double, 3> bary;
+  const Point3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  Point3 q = closest_point_on_triangle(Point3(0.25, 0.25, 3), a, b, c, bary);
+  EXPECT_NEAR((q - Point3(0.25, 0.25, 0)).Norm(), 0, 1e-12);
+  EXPECT_NEAR(bary[0], 0.5, 1e-12);
+  q = closest_point_on_triangle(Point3(2, -1, 0), a, b, c, bary);
+  EXPECT_NEAR((q - b).Norm(), 0, 1e-12);
+}
+
+TEST(RemeshPieces, HostFaceSearchWalkGridAndBruteForce) {
+  TriMesh m;
+  test::sphere(m, 3);
+  const Surface s = Surface::from_mesh(m, {});
+  const SurfaceLocator loc(s, 0.1);
+  const Point3 p = Point3(1, 1, 1).Normalize() * 1.001;
+  // Reference: brute-force closest face.
+  int ref = -1;
+  double best = 1e9;
+  for (size_t f = 0; f < s.faces.size(); ++f) {
+    std::array<double, 3> bary;
+    const double d = (closest_point_on_triangle(p, s.points[s.faces[f][0]], s.points[s.faces[f][1]], s.points[s.faces[f][2]], bary) - p).Norm();
+    if (d < best) { best = d; ref = int(f); }
+  }
+  SearchStep step;
+  Projection pr = loc.locate(p, -1, p, ref, 0.2, &step);
+  EXPECT_EQ(step, SearchStep::Walk);
+  EXPECT_NEAR(pr.distance, best, 1e-12);
+  // Without a start face the grid answers.
+  pr = loc.locate(p, -1, p, -1, 0.2, &step);
+  EXPECT_EQ(step, SearchStep::Grid);
+  EXPECT_NEAR(pr.distance, best, 1e-12);
+  // Far away: brute force still answers.
+  pr = loc.locate(p * 5, -1, p, -1, 0.1, &step);
+  EXPECT_EQ(step, SearchStep::BruteForce);
+  EXPECT_GE(pr.face, 0);
+  // A normal that disagrees (n_face . n_point <= 0.5) excludes the near side of the sphere.
+  pr = loc.locate(p, -1, -p, -1, 0.2, &step);
+  EXPECT_GT(pr.distance, 1.5);
+}
+
+TEST(RemeshPieces, SizeFieldUniformCurvatureAndGradation) {
+  TriMesh m;
+  test::sphere(m, 3);
+  const Surface s = Surface::from_mesh(m, {});
+  SizeParams sp;
+  sp.target_length = 0.5;
+  const SizeField uniform(s, sp);
+  EXPECT_DOUBLE_EQ(uniform.min_size(), 0.5);
+  EXPECT_DOUBLE_EQ(uniform.max_size(), 0.5);
+  // Chord error on the unit sphere: h = sqrt(8 * e * R) with R about 1.
+  sp.max_surface_error = 0.001;
+  const SizeField curved(s, sp);
+  EXPECT_NEAR(curved.max_size(), std::sqrt(8 * 0.001), 0.02);
+  // Gradation: one small source, sizes grow with slope (g - 1) away from it.
+  sp.max_surface_error = 0;
+  sp.gradation = 1.2;
+  sp.source_points = {s.points[0]};
+  sp.source_sizes = {0.05};
+  const SizeField graded(s, sp);
+  EXPECT_NEAR(graded.at_vertex(0), 0.05, 1e-12);
+  for (size_t v = 0; v < s.points.size(); ++v)
+    EXPECT_LE(graded.at_vertex(int(v)), 0.05 + 0.2 * (s.points[v] - s.points[0]).Norm() + 1e-12);
+}
+
+TEST(RemeshPieces, FrontPriorityTakesSmallestFirstAndPenalisesFailures) {
+  EXPECT_LT(front_priority(1.0, 0), front_priority(2.0, 0));
+  EXPECT_LT(front_priority(2.0, 0), front_priority(1.0, 1));
+}
+
+TEST(RemeshPieces, AdvancingFrontFillsASquare) {
+  TriMesh m;
+  test::grid(m, 4);
+  const Surface s = Surface::from_mesh(m, {});
+  const SurfaceLocator loc(s, 0.1);
+  std::vector<double> sizes(s.points.size(), 0.1);
+  const SizeField size(s, sizes);
+  OutputMesh out;
+  std::vector<FrontSide> front;
+  // The boundary of the unit square, counter-clockwise, 10 sides per edge.
+  std::vector<int> ring;
+  for (int k = 0; k < 40; ++k) {
+    const int side = k / 10, i = k % 10;
+    const double t = i / 10.0;
+    const Point3 p = side == 0 ? Point3(t, 0, 0) : side == 1 ? Point3(1, t, 0) : side == 2 ? Point3(1 - t, 1, 0) : Point3(0, 1 - t, 0);
+    ring.push_back(out.add_point(p, -1, PointKind::Line));
+  }
+  for (int k = 0; k < 40; ++k) front.push_back({ring[k], ring[(k + 1) % 40]});
+  const FrontResult r = advance_front(out, front, 0, loc, size);
+  EXPECT_EQ(r.unmeshed_sides, 0);
+  double area = 0;
+  for (const auto& f : out.faces) {
+    const Point3 n = (out.points[f[1]] - out.points[f[0]]) ^ (out.points[f[2]] - out.points[f[0]]);
+    EXPECT_GT(n[2], 0);  // oriented like the input
+    area += 0.5 * n[2];
+  }
+  EXPECT_NEAR(area, 1.0, 1e-9);
+}

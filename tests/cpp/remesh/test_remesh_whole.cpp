@@ -1,0 +1,118 @@
+// Whole remesh runs on synthetic shapes: topology, corners, angles.
+#include "common/errors.h"
+#include "remesh/remesh.h"
+#include "shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+using namespace mr;
+
+namespace {
+
+struct Topology {
+  int boundary_edges = 0, non_manifold_edges = 0, misoriented_edges = 0, euler = 0;
+};
+
+Topology topology(const TriMesh& m) {
+  std::map<std::pair<int, int>, int> directed;
+  std::map<std::pair<int, int>, int> undirected;
+  for (const auto& f : m.face)
+    for (int z = 0; z < 3; ++z) {
+      int a = int(vcg::tri::Index(m, f.cV(z))), b = int(vcg::tri::Index(m, f.cV((z + 1) % 3)));
+      directed[{a, b}]++;
+      undirected[std::minmax(a, b)]++;
+    }
+  Topology t;
+  for (const auto& [e, n] : undirected) {
+    if (n == 1) t.boundary_edges++;
+    if (n > 2) t.non_manifold_edges++;
+  }
+  for (const auto& [e, n] : directed)
+    if (n > 1) t.misoriented_edges++;
+  t.euler = int(m.vert.size()) - int(undirected.size()) + int(m.face.size());
+  return t;
+}
+
+struct RemeshRun {
+  remesh::Result r;
+  TriMesh mesh;
+};
+
+void run(const TriMesh& m, double h, RemeshRun& out, remesh::Recovery rec = remesh::Recovery::Linear) {
+  remesh::Params p;
+  p.target_length = h;
+  p.recovery = rec;
+  out.r = remesh::remesh(m, p, out.mesh);
+}
+
+void run(const TriMesh& m, double h) {
+  RemeshRun out;
+  run(m, h, out);
+}
+
+}  // namespace
+
+TEST(RemeshWhole, CubeIsClosedManifoldKeepsCornersAndAngles) {
+  TriMesh m;
+  test::cube(m, 1);
+  RemeshRun run_;
+  run(m, 0.2, run_);
+  const auto& r = run_.r;
+  const TriMesh& out = run_.mesh;
+  const Topology t = topology(out);
+  EXPECT_EQ(r.unmeshed_sides, 0);
+  EXPECT_EQ(t.boundary_edges, 0);
+  EXPECT_EQ(t.non_manifold_edges, 0);
+  EXPECT_EQ(t.misoriented_edges, 0);
+  EXPECT_EQ(t.euler, 2);
+  // Every cube corner is an output vertex at the same position.
+  for (int x : {-1, 1})
+    for (int y : {-1, 1})
+      for (int z : {-1, 1}) {
+        double best = 1e9;
+        for (const auto& v : out.vert) best = std::min(best, (v.cP() - Point3(x, y, z)).Norm());
+        EXPECT_EQ(best, 0.0);
+      }
+  // 12 edges of length 2 at h=0.2: 10 segments each.
+  EXPECT_EQ(r.feature_edges, 120);
+  EXPECT_GE(r.min_angle_deg, 30.0);
+  EXPECT_GE(r.edges_in_range, 0.95);
+  // All points lie on the cube.
+  for (const auto& v : out.vert) {
+    const double linf = std::max({std::abs(v.cP()[0]), std::abs(v.cP()[1]), std::abs(v.cP()[2])});
+    EXPECT_NEAR(linf, 1.0, 1e-9);
+  }
+}
+
+TEST(RemeshWhole, SphereWithoutFeaturesIsClosed) {
+  TriMesh m;
+  test::sphere(m, 4);
+  RemeshRun run_;
+  run(m, 0.15, run_);
+  const auto& r = run_.r;
+  const TriMesh& out = run_.mesh;
+  const Topology t = topology(out);
+  EXPECT_EQ(r.unmeshed_sides, 0);
+  EXPECT_EQ(r.corners, 0);
+  EXPECT_EQ(t.boundary_edges, 0);
+  EXPECT_EQ(t.non_manifold_edges, 0);
+  EXPECT_EQ(t.misoriented_edges, 0);
+  EXPECT_EQ(t.euler, 2);
+  EXPECT_GE(r.min_angle_deg, 25.0);
+  EXPECT_GE(r.mean_min_angle_deg, 50.0);
+  EXPECT_LT(r.hausdorff, 0.02);
+}
+
+TEST(RemeshWhole, BadInputThrows) {
+  TriMesh empty;
+  EXPECT_THROW(run(empty, 0.1), InvalidInput);
+  TriMesh m;
+  test::cube(m, 1);
+  EXPECT_THROW(run(m, 0.0), InvalidInput);
+  EXPECT_THROW(run(m, -1.0), InvalidInput);
+  EXPECT_THROW(run(m, 10.0), InvalidInput);  // diagonal is about 3.46
+}
