@@ -3,6 +3,8 @@
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -24,6 +26,7 @@ struct Side {
   int a, b;
   int failures = 0;
   bool alive = true;
+  Point3 back_normal{0, 0, 0};  ///< normal of the generated face behind the side (zero for initial sides)
 };
 
 // Front points in a hash grid; entries are never removed, callers skip points off the front.
@@ -67,12 +70,14 @@ public:
 private:
   struct Local { int host = -1; Point3 normal; int degree = 0; std::vector<int> sides; };
   Local& local(int v);
-  void add_side(int a, int b, int failures = 0);
+  void add_side(int a, int b, const Point3& back_normal = Point3(0, 0, 0));
   void remove_side(int s);
   bool try_side(int s);
-  bool valid_triangle(int a, int b, const Point3& q, int q_id, const TangentFrame& frame, double h,
+  bool valid_triangle(int a, int b, const Point3& q, int q_id, const Point3& q_normal, const TangentFrame& side_frame, double h,
                       double min_angle_rad, const std::vector<int>& near_points) const;
   void add_triangle(int a, int b, int c);
+  int side_host(int a, int b, const Projection& at_mid, const Point3& back_normal) const;
+  Point3 normal_towards(int v, const Point3& reference) const;
   void seed_triangle();
   double estimated_faces() const;
 
@@ -89,6 +94,9 @@ private:
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue_;
   FrontResult result_;
+ public:
+  mutable int last_reason_ = 0;
+  Point3 current_back_{0, 0, 0};  // back normal of the side being processed
 };
 
 PatchMesher::Local& PatchMesher::local(int v) {
@@ -102,8 +110,9 @@ PatchMesher::Local& PatchMesher::local(int v) {
   return locals_.emplace(v, std::move(l)).first->second;
 }
 
-void PatchMesher::add_side(int a, int b, int failures) {
-  Side s{a, b, failures, true};
+void PatchMesher::add_side(int a, int b, const Point3& back_normal) {
+  const int failures = 0;
+  Side s{a, b, failures, true, back_normal};
   const int id = int(sides_.size());
   sides_.push_back(s);
   front_[directed(a, b)] = id;
@@ -123,35 +132,96 @@ void PatchMesher::remove_side(int s) {
 }
 
 void PatchMesher::add_triangle(int a, int b, int c) {
+  if (const char* tf = std::getenv("MR_TRACE_FACE")) if (int(out_.faces.size()) == std::atoi(tf)) {
+    std::fprintf(stderr, "TRACE face %zu = %d %d %d kinds %d %d %d back (%.2f %.2f %.2f)\n", out_.faces.size(), a, b, c, int(out_.kind[a]), int(out_.kind[b]), int(out_.kind[c]), current_back_[0], current_back_[1], current_back_[2]);
+    for (int v : {a, b, c}) std::fprintf(stderr, "   %d (%.4f %.4f %.4f) n (%.2f %.2f %.2f) deg %d\n", v, out_.points[v][0], out_.points[v][1], out_.points[v][2], locals_.at(v).normal[0], locals_.at(v).normal[1], locals_.at(v).normal[2], locals_.at(v).degree);
+  }
   out_.faces.push_back({a, b, c});
   out_.face_patch.push_back(patch_);
   result_.faces++;
   const int tri[3] = {a, b, c};
+  const Point3 n = unit_normal(out_.points[a], out_.points[b], out_.points[c]);
   for (int z = 0; z < 3; ++z) {
     const int x = tri[z], y = tri[(z + 1) % 3];
     used_.insert(directed(x, y));
     auto it = front_.find(directed(x, y));
     if (it != front_.end()) remove_side(it->second);
-    else add_side(y, x);
+    else add_side(y, x, n);
   }
 }
 
-// Is triangle (a,b,q) acceptable? All 2D tests run in the tangent plane of the host face of ab.
-bool PatchMesher::valid_triangle(int a, int b, const Point3& q, int q_id, const TangentFrame& frame, double h,
-                                 double min_angle_rad, const std::vector<int>& near_points) const {
+// At a ridge or a dangling line several faces of the patch touch the side: the host is the
+// face for which the side is properly oriented, i.e. the face lies to its left (Eq. 1).
+int PatchMesher::side_host(int a, int b, const Projection& at_mid, const Point3& back_normal) const {
+  const Surface& s = loc_.surface();
   const Point3 &pa = out_.points[a], &pb = out_.points[b];
+  const Point3 mid = (pa + pb) * 0.5, dir = pb - pa;
+  const double tol = at_mid.distance + 1e-7 * dir.Norm();
+  std::vector<int> near;
+  loc_.faces_near(mid, tol, near);
+  int best = at_mid.face;
+  double best_score = -2;
+  for (int f : near) {
+    if (s.group[f] != patch_) continue;
+    // Behind a generated face the host must agree with it (no folding back over a fold of the input).
+    if (back_normal.SquaredNorm() > 0 && s.face_normal[f] * back_normal <= 0.3) continue;
+    const auto& t = s.faces[f];
+    std::array<double, 3> bary;
+    if ((closest_point_on_triangle(mid, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary) - mid).Norm() > tol) continue;
+    const Point3 centre = (s.points[t[0]] + s.points[t[1]] + s.points[t[2]]) / 3.0;
+    Point3 left = s.face_normal[f] ^ dir;
+    const double len = left.Norm();
+    if (len == 0) continue;
+    const double score = (left / len) * (centre - mid) / std::max((centre - mid).Norm(), 1e-300);
+    if (score > best_score) { best_score = score; best = f; }
+  }
+  return best;
+}
+
+// A point on a line or corner touches several faces of the patch: use the normal of the one
+// that agrees best with `reference`; a free point has one host face.
+Point3 PatchMesher::normal_towards(int v, const Point3& reference) const {
+  const Local& l = locals_.at(v);
+  if (out_.kind[v] == PointKind::Free) return l.normal;
+  const Surface& s = loc_.surface();
+  const Point3& p = out_.points[v];
+  std::vector<int> near;
+  const double tol = 1e-9 * std::max(size_.max_size(), 1e-300);
+  loc_.faces_near(p, tol, near);
+  Point3 best = l.normal;
+  double best_dot = l.normal * reference;
+  for (int f : near) {
+    if (s.group[f] != patch_) continue;
+    const auto& t = s.faces[f];
+    std::array<double, 3> bary;
+    if ((closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary) - p).Norm() > tol) continue;
+    if (s.face_normal[f] * reference > best_dot) { best_dot = s.face_normal[f] * reference; best = s.face_normal[f]; }
+  }
+  return best;
+}
+
+// Is triangle (a,b,q) acceptable? All 2D tests run in the tangent plane of the host face of ab.
+bool PatchMesher::valid_triangle(int a, int b, const Point3& q, int q_id, const Point3& q_normal,
+                                 const TangentFrame& side_frame, double h, double min_angle_rad,
+                                 const std::vector<int>& near_points) const {
+  const Point3 &pa = out_.points[a], &pb = out_.points[b];
+  // The plane of the checks averages the side's and the candidate's surface normals, so a
+  // candidate just around a tight bend is still seen ahead of the side.
+  Point3 n_avg = side_frame.normal + q_normal;
+  if (n_avg.Norm() < 0.5) n_avg = side_frame.normal;
+  const TangentFrame frame(side_frame.origin, pb - pa, n_avg);
   const vcg::Point2d a2 = frame.to_2d(pa), b2 = frame.to_2d(pb), q2 = frame.to_2d(q);
   const double L = (pb - pa).Norm();
-  if (orient_2d(a2, b2, q2) <= 1e-6 * L * L) return false;       // q must lie ahead of the side
-  if (min_angle(pa, pb, q) < min_angle_rad) return false;
-  if (unit_normal(pa, pb, q) * frame.normal < 0.5) return false;  // folds over the surface
+  if (orient_2d(a2, b2, q2) <= 1e-6 * L * L) { last_reason_ = 1; return false; }       // q must lie ahead of the side
+  if (min_angle(pa, pb, q) < min_angle_rad) { last_reason_ = 2; return false; }
+  if (unit_normal(pa, pb, q) * frame.normal < 0.3) { last_reason_ = 3; return false; }  // folds over the surface
   // Directed-side rules: a side of the new face either closes a front side or is new.
   const int sides[2][2] = {{b, q_id}, {q_id, a}};
   if (q_id >= 0) {
     for (const auto& s : sides) {
       const auto key = directed(s[0], s[1]);
       if (front_.count(key)) continue;
-      if (used_.count(key) || front_.count(directed(s[1], s[0])) || used_.count(directed(s[1], s[0]))) return false;
+      if (used_.count(key) || front_.count(directed(s[1], s[0])) || used_.count(directed(s[1], s[0]))) { last_reason_ = 4; return false; }
     }
   }
   // 2D crossing and containment against nearby front sides and points on the same side of the surface.
@@ -161,28 +231,39 @@ bool PatchMesher::valid_triangle(int a, int b, const Point3& q, int q_id, const 
     auto it = locals_.find(v);
     if (it == locals_.end() || it->second.degree == 0) continue;
     const Local& l = it->second;
-    if (l.normal * frame.normal <= 0.0) continue;  // the other side of a cusp or thin wall
+    if (normal_towards(v, frame.normal) * frame.normal <= 0.0) continue;  // the other side of a cusp or thin wall
     const Point3& pv = out_.points[v];
     if (std::abs((pv - frame.origin) * frame.normal) > reach) continue;
     const vcg::Point2d v2 = frame.to_2d(pv);
-    if (v != a && v != b && v != q_id && strictly_inside_2d(v2, a2, b2, q2, eps)) return false;
+    if (v != a && v != b && v != q_id) {
+      if (strictly_inside_2d(v2, a2, b2, q2, eps)) { last_reason_ = 5; return false; }
+      // A front point (nearly) on a new side: the side would run along the front.
+      auto near_segment = [&](const vcg::Point2d& x, const vcg::Point2d& y) {
+        const vcg::Point2d d = y - x;
+        const double len2 = d.SquaredNorm();
+        if (len2 == 0) return false;
+        const double t = ((v2 - x) * d) / len2;
+        return t > 0 && t < 1 && (x + d * t - v2).Norm() < 0.05 * std::sqrt(len2);
+      };
+      if (near_segment(a2, q2) || near_segment(q2, b2)) { last_reason_ = 9; return false; }
+    }
     for (int s : l.sides) {
       const Side& side = sides_[s];
       if (side.a != v) continue;  // each side once, from its first end
       const int u = side.b;
       auto iu = locals_.find(u);
-      if (iu != locals_.end() && iu->second.normal * frame.normal <= 0.0) continue;
+      if (iu != locals_.end() && normal_towards(u, frame.normal) * frame.normal <= 0.0) continue;
       const vcg::Point2d u2 = frame.to_2d(out_.points[u]);
       auto touches = [&](int x, int y) { return x == v || x == u || y == v || y == u; };
-      if (!touches(a, q_id) && segments_cross_2d(a2, q2, v2, u2, eps)) return false;
-      if (!touches(q_id, b) && segments_cross_2d(q2, b2, v2, u2, eps)) return false;
+      if (!touches(a, q_id) && segments_cross_2d(a2, q2, v2, u2, eps)) { last_reason_ = 6; return false; }
+      if (!touches(q_id, b) && segments_cross_2d(q2, b2, v2, u2, eps)) { last_reason_ = 7; return false; }
       // A new point must not sit on top of a front side either.
       if (q_id < 0) {
         const vcg::Point2d d = u2 - v2;
         const double len2 = d.SquaredNorm();
         if (len2 > 0) {
           const double t = std::clamp(((q2 - v2) * d) / len2, 0.0, 1.0);
-          if ((v2 + d * t - q2).Norm() < 0.3 * h) return false;
+          if ((v2 + d * t - q2).Norm() < 0.3 * h) { last_reason_ = 8; return false; }
         }
       }
     }
@@ -196,10 +277,13 @@ bool PatchMesher::try_side(int s) {
   const double L = (pb - pa).Norm();
   const Point3 mid = (pa + pb) * 0.5;
   const Local &la = local(a), &lb = local(b);
-  const Projection host = loc_.locate(mid, patch_, la.normal + lb.normal, la.host >= 0 ? la.host : lb.host,
+  const Point3 back = sides_[s].back_normal;
+  const Projection host = loc_.locate(mid, patch_, back.SquaredNorm() > 0 ? back : la.normal + lb.normal, la.host >= 0 ? la.host : lb.host,
                                       L + size_.max_size());
   if (host.face < 0) return false;
-  const Point3 normal = loc_.surface().face_normal[host.face];
+  const int host_face = side_host(a, b, host, back);
+  current_back_ = back;
+  const Point3 normal = loc_.surface().face_normal[host_face];
   const TangentFrame frame(mid, pb - pa, normal);
   const double h = size_.at(host.face, host.bary);
   const double hs = std::clamp(h, 0.7 * L, 1.6 * L);
@@ -208,9 +292,21 @@ bool PatchMesher::try_side(int s) {
 
   // The ideal point for a well-shaped face, projected onto the patch.
   const Point3 ideal = mid + frame.e2 * height;
-  const Projection proj = loc_.locate(ideal, patch_, normal, host.face, 2 * hs + h);
-  const bool have_new = proj.face >= 0 && loc_.surface().face_normal[proj.face] * normal > 0.5;
+  Projection proj = loc_.locate(ideal, patch_, normal, host_face, 2 * hs + h);
+  // Where the surface bends away within one element the projection falls short: march on
+  // along the surface until the point is about `height` from the side.
+  for (int step = 0; step < 3 && proj.face >= 0; ++step) {
+    const Point3 dir = proj.point - mid;
+    const double d = dir.Norm();
+    if (d >= 0.9 * height || d <= 1e-12 * L) break;
+    const Point3 nf = loc_.surface().face_normal[proj.face];
+    const Projection next = loc_.locate(proj.point + dir / d * (height - d), patch_, nf, proj.face, 2 * hs + h);
+    if (next.face < 0) break;
+    proj = next;
+  }
+  const bool have_new = proj.face >= 0 && loc_.surface().face_normal[proj.face] * normal > 0.2;
   const Point3 p_new = have_new ? proj.point : ideal;
+  const Point3 new_normal = have_new ? loc_.surface().face_normal[proj.face] : normal;
 
   const double radius = std::max(hs, L) * (2.0 + failures);
   std::vector<int> near;
@@ -227,8 +323,7 @@ bool PatchMesher::try_side(int s) {
   double closest_to_new = std::numeric_limits<double>::max();
   for (int v : near) {
     if (v == a || v == b) continue;
-    const Local& l = locals_.at(v);
-    if (l.normal * normal <= 0.5) continue;  // cusp filter by normals
+    if (normal_towards(v, normal) * normal <= 0.2) continue;  // cusp filter by normals
     const double d = (out_.points[v] - p_new).Norm();
     closest_to_new = std::min(closest_to_new, d);
     if ((out_.points[v] - mid).Norm() <= radius) existing.push_back({d, v});
@@ -244,9 +339,9 @@ bool PatchMesher::try_side(int s) {
   size_t k = 0;
   for (; k < existing.size() && existing[k].first <= accept_radius; ++k) {
     const int q = existing[k].second;
-    if (valid_triangle(a, b, out_.points[q], q, frame, h, min_angle_rad, near)) return accept(q);
+    if (valid_triangle(a, b, out_.points[q], q, normal_towards(q, normal), frame, h, min_angle_rad, near)) return accept(q);
   }
-  if (new_allowed && valid_triangle(a, b, p_new, -1, frame, h, std::min(min_angle_rad, 20.0 * kDeg), near)) {
+  if (new_allowed && valid_triangle(a, b, p_new, -1, new_normal, frame, h, std::min(min_angle_rad, 20.0 * kDeg), near)) {
     const int q = out_.add_point(p_new, proj.face, PointKind::Free);
     result_.new_points++;
     local(q);
@@ -254,8 +349,15 @@ bool PatchMesher::try_side(int s) {
   }
   for (; k < existing.size(); ++k) {
     const int q = existing[k].second;
-    if (valid_triangle(a, b, out_.points[q], q, frame, h, min_angle_rad, near)) return accept(q);
+    if (valid_triangle(a, b, out_.points[q], q, normal_towards(q, normal), frame, h, min_angle_rad, near)) return accept(q);
+    if (std::getenv("MR_DEBUG") && failures >= params_.max_retries) std::fprintf(stderr, " cand %d d %.4f reason %d\n", q, existing[k].first, last_reason_);
   }
+  if (std::getenv("MR_DEBUG") && failures >= params_.max_retries) { valid_triangle(a, b, p_new, -1, new_normal, frame, h, std::min(min_angle_rad, 20.0 * kDeg), near); std::fprintf(stderr, " new reason %d\n", last_reason_); }
+  static int dbg = 0;
+  if (std::getenv("MR_DEBUG") && failures >= params_.max_retries && dbg++ < 10)
+    std::fprintf(stderr, "dead side %d-%d L %.4f h %.4f cand %zu have_new %d new_allowed %d closest %.4f proj_dist %.4f nd %.3f mid (%.3f %.3f %.3f)\n", a, b, L, h,
+                 existing.size(), int(have_new), int(new_allowed), closest_to_new, proj.distance,
+                 proj.face >= 0 ? loc_.surface().face_normal[proj.face] * normal : -9.0, mid[0], mid[1], mid[2]);
   return false;
 }
 

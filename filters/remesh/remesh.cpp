@@ -13,6 +13,8 @@
 #include "remesh/surface_recovery.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -106,6 +108,7 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
     progress(params, 15 + int(65.0 * patch / std::max(fr.patch_count, 1)), "Advancing the front");
     const FrontResult r = advance_front(out, ff.patch_front[patch], patch, locator, size);
     result.unmeshed_sides += r.unmeshed_sides;
+    if (std::getenv("MR_DEBUG")) std::fprintf(stderr, "patch %d front %zu faces %d new %d unmeshed %d iter %ld limit %d\n", patch, ff.patch_front[patch].size(), r.faces, r.new_points, r.unmeshed_sides, r.iterations, int(r.iteration_limit));
     if (r.unmeshed_sides > 0 || r.iteration_limit) result.unmeshed_patches++;
   }
 
