@@ -3,8 +3,6 @@
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -94,8 +92,7 @@ private:
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue_;
   FrontResult result_;
- public:
-  mutable int last_reason_ = 0;
+  mutable int last_reason_ = 0;  // why the last candidate was rejected (for debugging)
   Point3 current_back_{0, 0, 0};  // back normal of the side being processed
 };
 
@@ -132,10 +129,6 @@ void PatchMesher::remove_side(int s) {
 }
 
 void PatchMesher::add_triangle(int a, int b, int c) {
-  if (const char* tf = std::getenv("MR_TRACE_FACE")) if (int(out_.faces.size()) == std::atoi(tf)) {
-    std::fprintf(stderr, "TRACE face %zu = %d %d %d kinds %d %d %d back (%.2f %.2f %.2f)\n", out_.faces.size(), a, b, c, int(out_.kind[a]), int(out_.kind[b]), int(out_.kind[c]), current_back_[0], current_back_[1], current_back_[2]);
-    for (int v : {a, b, c}) std::fprintf(stderr, "   %d (%.4f %.4f %.4f) n (%.2f %.2f %.2f) deg %d\n", v, out_.points[v][0], out_.points[v][1], out_.points[v][2], locals_.at(v).normal[0], locals_.at(v).normal[1], locals_.at(v).normal[2], locals_.at(v).degree);
-  }
   out_.faces.push_back({a, b, c});
   out_.face_patch.push_back(patch_);
   result_.faces++;
@@ -350,14 +343,7 @@ bool PatchMesher::try_side(int s) {
   for (; k < existing.size(); ++k) {
     const int q = existing[k].second;
     if (valid_triangle(a, b, out_.points[q], q, normal_towards(q, normal), frame, h, min_angle_rad, near)) return accept(q);
-    if (std::getenv("MR_DEBUG") && failures >= params_.max_retries) std::fprintf(stderr, " cand %d d %.4f reason %d\n", q, existing[k].first, last_reason_);
   }
-  if (std::getenv("MR_DEBUG") && failures >= params_.max_retries) { valid_triangle(a, b, p_new, -1, new_normal, frame, h, std::min(min_angle_rad, 20.0 * kDeg), near); std::fprintf(stderr, " new reason %d\n", last_reason_); }
-  static int dbg = 0;
-  if (std::getenv("MR_DEBUG") && failures >= params_.max_retries && dbg++ < 10)
-    std::fprintf(stderr, "dead side %d-%d L %.4f h %.4f cand %zu have_new %d new_allowed %d closest %.4f proj_dist %.4f nd %.3f mid (%.3f %.3f %.3f)\n", a, b, L, h,
-                 existing.size(), int(have_new), int(new_allowed), closest_to_new, proj.distance,
-                 proj.face >= 0 ? loc_.surface().face_normal[proj.face] * normal : -9.0, mid[0], mid[1], mid[2]);
   return false;
 }
 

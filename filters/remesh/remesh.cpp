@@ -13,8 +13,6 @@
 #include "remesh/surface_recovery.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -69,6 +67,23 @@ void build_output(const OutputMesh& out, const std::vector<std::array<int, 2>>& 
   for (const auto& v : m.vert) m.bbox.Add(v.cP());
 }
 
+// A feature line shorter than the target size (a short crease that fades out, a tiny step)
+// cannot be meshed well with elements larger than itself: its vertices get its length as
+// size, and the gradation spreads the refinement around it.
+std::vector<double> small_feature_caps(const TriMesh& mesh, const features::Result& fr, double target) {
+  std::vector<double> cap(mesh.vert.size(), 0.0);
+  for (const auto& line : fr.lines) {
+    double length = 0;
+    const size_t n = line.vertices.size();
+    for (size_t k = 0; k + 1 < n + (line.closed ? 1 : 0); ++k)
+      length += (mesh.vert[line.vertices[k]].cP() - mesh.vert[line.vertices[(k + 1) % n]].cP()).Norm();
+    if (length >= target) continue;
+    const double h = std::max(length, target / 8.0);
+    for (int v : line.vertices) cap[v] = cap[v] > 0 ? std::min(cap[v], h) : h;
+  }
+  return cap;
+}
+
 }  // namespace
 
 Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
@@ -96,6 +111,7 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   sp.gradation = params.gradation;
   sp.source_points = params.source_points;
   sp.source_sizes = params.source_sizes;
+  sp.vertex_cap = small_feature_caps(input, fr, params.target_length);
   const SizeField size(surface, sp);
   const SurfaceLocator locator(surface, params.target_length);
 
@@ -108,7 +124,6 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
     progress(params, 15 + int(65.0 * patch / std::max(fr.patch_count, 1)), "Advancing the front");
     const FrontResult r = advance_front(out, ff.patch_front[patch], patch, locator, size);
     result.unmeshed_sides += r.unmeshed_sides;
-    if (std::getenv("MR_DEBUG")) std::fprintf(stderr, "patch %d front %zu faces %d new %d unmeshed %d iter %ld limit %d\n", patch, ff.patch_front[patch].size(), r.faces, r.new_points, r.unmeshed_sides, r.iterations, int(r.iteration_limit));
     if (r.unmeshed_sides > 0 || r.iteration_limit) result.unmeshed_patches++;
   }
 

@@ -38,6 +38,8 @@ SizeField::SizeField(const Surface& surface, const SizeParams& params)
       if (h > 0) vertex_size_[v] = std::min(vertex_size_[v], h);
     }
   }
+  for (size_t v = 0; v < params.vertex_cap.size() && v < vertex_size_.size(); ++v)
+    if (params.vertex_cap[v] > 0) vertex_size_[v] = std::min(vertex_size_[v], params.vertex_cap[v]);
   limit_gradation(params.gradation);
   update_range();
 }

@@ -17,6 +17,8 @@ struct SizeParams {
   /// Point sources: positions and sizes, limiting h around them (after gradation).
   std::vector<Point3> source_points;
   std::vector<double> source_sizes;
+  /// Optional per-vertex upper bounds (e.g. small features), applied before the gradation.
+  std::vector<double> vertex_cap;
 };
 
 class SizeField {
