@@ -1,0 +1,106 @@
+#include "quadsub/quad_mesh.h"
+
+#include "common/edge_table.h"
+#include "common/errors.h"
+
+#include <map>
+
+namespace mr::quadsub {
+
+std::vector<std::vector<int>> polygons_from_faux_edges(const TriMesh& mesh) {
+  const int nf = int(mesh.face.size());
+  const EdgeTable edges(mesh);
+  auto vid = [&](int f, int z) { return int(vcg::tri::Index(mesh, mesh.face[f].cV(z))); };
+  std::vector<int> region(nf, -1);
+  std::vector<std::vector<int>> polygons;
+  std::vector<int> stack, members;
+  for (int seed = 0; seed < nf; ++seed) {
+    if (region[seed] >= 0) continue;
+    const int id = int(polygons.size());
+    members.clear();
+    region[seed] = id;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      int f = stack.back();
+      stack.pop_back();
+      members.push_back(f);
+      for (int z = 0; z < 3; ++z) {
+        if (!mesh.face[f].IsF(z)) continue;
+        int g = edges.opposite_face(f, z);
+        if (g >= 0 && region[g] < 0) { region[g] = id; stack.push_back(g); }
+      }
+    }
+    // The polygon's border: the non-faux sides, chained tail to head.
+    std::map<int, int> next;
+    for (int f : members)
+      for (int z = 0; z < 3; ++z)
+        if (!mesh.face[f].IsF(z) || edges.opposite_face(f, z) < 0 ||
+            region[edges.opposite_face(f, z)] != id) {
+          if (!next.emplace(vid(f, z), vid(f, (z + 1) % 3)).second)
+            throw InvalidInput("a polygon (faces joined by faux edges) touches itself at a vertex: "
+                               "split it or clear its faux edges");
+        }
+    std::vector<int> loop;
+    int start = next.begin()->first, v = start;
+    do {
+      loop.push_back(v);
+      auto it = next.find(v);
+      if (it == next.end() || loop.size() > next.size())
+        throw InvalidInput("a polygon (faces joined by faux edges) has no simple border");
+      v = it->second;
+    } while (v != start);
+    if (loop.size() != next.size())
+      throw InvalidInput("a polygon (faces joined by faux edges) has holes: clear its faux edges");
+    polygons.push_back(std::move(loop));
+  }
+  return polygons;
+}
+
+QuadMesh quads_from_polygons(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons) {
+  QuadMesh out;
+  out.points = points;
+  std::map<std::pair<int, int>, int> midpoint;
+  auto mid = [&](int a, int b) {
+    auto key = std::minmax(a, b);
+    auto it = midpoint.find(key);
+    if (it != midpoint.end()) return it->second;
+    out.points.push_back((points[a] + points[b]) * 0.5);
+    return midpoint[key] = int(out.points.size()) - 1;
+  };
+  for (const auto& poly : polygons) {
+    const int n = int(poly.size());
+    if (n == 4) {
+      out.quads.push_back({poly[0], poly[1], poly[2], poly[3]});
+      continue;
+    }
+    Point3 centre(0, 0, 0);
+    for (int v : poly) centre += points[v];
+    out.points.push_back(centre / double(n));
+    const int c = int(out.points.size()) - 1;
+    for (int k = 0; k < n; ++k) {
+      int prev = poly[(k + n - 1) % n], here = poly[k], next = poly[(k + 1) % n];
+      out.quads.push_back({here, mid(here, next), c, mid(prev, here)});
+    }
+  }
+  return out;
+}
+
+void quads_to_tri_mesh(const QuadMesh& quads, TriMesh& out) {
+  out.Clear();
+  vcg::tri::Allocator<TriMesh>::AddVertices(out, quads.points.size());
+  vcg::tri::Allocator<TriMesh>::AddFaces(out, 2 * quads.quads.size());
+  for (size_t i = 0; i < quads.points.size(); ++i) out.vert[i].P() = quads.points[i];
+  for (size_t q = 0; q < quads.quads.size(); ++q) {
+    const auto& c = quads.quads[q];
+    auto& t0 = out.face[2 * q];
+    auto& t1 = out.face[2 * q + 1];
+    t0.V(0) = &out.vert[c[0]]; t0.V(1) = &out.vert[c[1]]; t0.V(2) = &out.vert[c[2]];
+    t1.V(0) = &out.vert[c[0]]; t1.V(1) = &out.vert[c[2]]; t1.V(2) = &out.vert[c[3]];
+    t0.SetF(2);  // c2 -> c0 is the quad's diagonal
+    t1.SetF(0);  // c0 -> c2
+  }
+  out.bbox.SetNull();
+  for (const auto& v : out.vert) out.bbox.Add(v.cP());
+}
+
+}  // namespace mr::quadsub

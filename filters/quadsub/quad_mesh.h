@@ -1,0 +1,29 @@
+// Quad meshes for the interpolatory subdivision: plain arrays, converted from and to
+// MeshLab's representation (triangle pairs whose shared diagonal is a faux edge).
+#pragma once
+
+#include "common/tri_mesh.h"
+
+#include <array>
+#include <utility>
+#include <vector>
+
+namespace mr::quadsub {
+
+struct QuadMesh {
+  std::vector<Point3> points;
+  std::vector<std::array<int, 4>> quads;  ///< counter-clockwise corner indices
+};
+
+/// Polygons of a triangle mesh: faces joined through faux edges (IsF) form one polygon.
+/// \throw InvalidInput when a faux-edge region is not a simple polygon.
+std::vector<std::vector<int>> polygons_from_faux_edges(const TriMesh& mesh);
+
+/// Quads of a polygon mesh: quads are kept; every other polygon is split into quads
+/// around its centroid through its edge midpoints (shared midpoints stay shared).
+QuadMesh quads_from_polygons(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons);
+
+/// Triangle pairs with faux diagonals, the way MeshLab stores quads.
+void quads_to_tri_mesh(const QuadMesh& quads, TriMesh& out);
+
+}  // namespace mr::quadsub

@@ -1,0 +1,223 @@
+#include "common/errors.h"
+#include "quadsub/interpolatory_subdivision.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+using namespace mr;
+using namespace mr::quadsub;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// n sectors of k x k quads glued around one centre vertex of valence n, vertices jittered.
+QuadMesh star(int n, int k, unsigned seed) {
+  QuadMesh m;
+  std::map<std::pair<int, std::pair<int, int>>, int> index;  // (sector, (a, b)) -> vertex
+  auto vertex = [&](int s, int a, int b) {
+    // a lattice point on a sector border belongs to the neighbouring sector as well
+    if (a == 0 && b == 0) s = 0;
+    else if (a == 0) { s = (s + 1) % n; a = b; b = 0; }
+    auto key = std::make_pair(s, std::make_pair(a, b));
+    auto it = index.find(key);
+    if (it != index.end()) return it->second;
+    double t0 = 2 * kPi * s / n, t1 = 2 * kPi * (s + 1) / n;
+    Point3 p(a * std::cos(t0) + b * std::cos(t1), a * std::sin(t0) + b * std::sin(t1), 0);
+    m.points.push_back(p);
+    return index[key] = int(m.points.size()) - 1;
+  };
+  for (int s = 0; s < n; ++s)
+    for (int a = 0; a < k; ++a)
+      for (int b = 0; b < k; ++b)
+        m.quads.push_back({vertex(s, a, b), vertex(s, a + 1, b), vertex(s, a + 1, b + 1), vertex(s, a, b + 1)});
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+  for (auto& p : m.points) p += Point3(jitter(rng), jitter(rng), 0.3 * std::sin(p[0]) * std::cos(p[1]) + jitter(rng));
+  return m;
+}
+
+// Regular (n+1) x (n+1) grid on [0,1]^2 with z = f(x, y).
+template <class F>
+QuadMesh grid(int n, F f, double x0 = 0) {
+  QuadMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      double x = x0 + double(i) / n, y = double(j) / n;
+      m.points.push_back(Point3(x, y, f(x, y)));
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      int a = j * (n + 1) + i;
+      m.quads.push_back({a, a + 1, a + n + 2, a + n + 1});
+    }
+  return m;
+}
+
+std::vector<std::vector<int>> polygons(const QuadMesh& m) {
+  std::vector<std::vector<int>> out;
+  for (const auto& q : m.quads) out.push_back({q[0], q[1], q[2], q[3]});
+  return out;
+}
+
+double bicubic(double x, double y) { return 0.3 * x * x * x - x * x * y + 0.7 * y * y * y + 0.2 * x * y * y * y + x - y; }
+}  // namespace
+
+TEST(QuadSub, DiagonalCorrectionMakesFacePointsAgreeAtValences3To6) {
+  for (int n : {3, 5, 6}) {
+    QuadMesh m = star(n, 4, 11 + n);
+    std::vector<std::pair<Point3, Point3>> dirs;
+    subdivide_step(m, {}, Params{}, nullptr, &dirs);
+    int checked = 0;
+    for (size_t q = 0; q < m.quads.size(); ++q) {
+      if (m.quads[q][0] != 0) continue;  // faces at the extraordinary centre (vertex 0)
+      EXPECT_LT((dirs[q].first - dirs[q].second).Norm(), 1e-12) << "valence " << n;
+      ++checked;
+    }
+    EXPECT_EQ(checked, n);
+  }
+}
+
+TEST(QuadSub, DerivedDiagonalWeightHoldsForOtherTensions) {
+  // With w = 0.5 the weight -w/(8+w) (not the w = 1 value -1/9) makes both directions agree.
+  QuadMesh m = star(5, 4, 3);
+  Params p;
+  p.w = 0.5;
+  std::vector<std::pair<Point3, Point3>> dirs;
+  subdivide_step(m, {}, p, nullptr, &dirs);
+  for (size_t q = 0; q < m.quads.size(); ++q) {
+    if (m.quads[q][0] == 0) { EXPECT_LT((dirs[q].first - dirs[q].second).Norm(), 1e-12); }
+  }
+  EXPECT_DOUBLE_EQ(diagonal_correction_weight(0.5), -0.5 / 8.5);
+  EXPECT_DOUBLE_EQ(diagonal_correction_weight(1.0), -1.0 / 9.0);
+}
+
+TEST(QuadSub, OldVerticesNeverMoveBitForBit) {
+  QuadMesh m = star(5, 3, 5);
+  Params p;
+  p.iterations = 2;
+  Result r = subdivide(m.points, polygons(m), {}, p);
+  for (size_t i = 0; i < m.points.size(); ++i) {
+    EXPECT_EQ(r.mesh.points[i][0], m.points[i][0]);
+    EXPECT_EQ(r.mesh.points[i][1], m.points[i][1]);
+    EXPECT_EQ(r.mesh.points[i][2], m.points[i][2]);
+  }
+  EXPECT_EQ(r.mesh.quads.size(), m.quads.size() * 16);
+  EXPECT_EQ(r.extraordinary_vertices, 1);
+}
+
+TEST(QuadSub, ReproducesBicubicsOnRegularGridsWithW1) {
+  const int n = 10;
+  QuadMesh m = grid(n, bicubic);
+  Result r = subdivide(m.points, polygons(m), {}, Params{});
+  // Refined vertices whose stencils stay inside the grid (two cells from the border).
+  int checked = 0;
+  for (const auto& p : r.mesh.points) {
+    if (p[0] < 2.0 / n - 1e-9 || p[0] > 1 - 2.0 / n + 1e-9 || p[1] < 2.0 / n - 1e-9 || p[1] > 1 - 2.0 / n + 1e-9)
+      continue;
+    EXPECT_NEAR(p[2], bicubic(p[0], p[1]), 1e-12);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 13 * 13);  // x, y in {0.2, 0.25, ..., 0.8}
+}
+
+TEST(QuadSub, TensionZeroGivesMidpoints) {
+  QuadMesh m = grid(4, [](double x, double y) { return std::sin(3 * x) * y; });
+  Params p;
+  p.w = 0;
+  EdgeList none;
+  QuadMesh out = subdivide_step(m, none, p, nullptr);
+  // the new vertex between corners 0 and 1 of the first quad is their midpoint
+  const auto& q = out.quads[0];
+  Point3 mid = (m.points[m.quads[0][0]] + m.points[m.quads[0][1]]) * 0.5;
+  EXPECT_LT((out.points[q[1]] - mid).Norm(), 1e-15);
+}
+
+TEST(QuadSub, PatchesSharingABoundaryPolygonStayJoined) {
+  // Two grids side by side share the polygon x = 1; each is subdivided on its own.
+  auto f = [](double x, double y) { return std::sin(2 * x) + y * y * y; };
+  QuadMesh left = grid(5, f, 0.0), right = grid(5, f, 1.0);
+  Params p;
+  p.iterations = 2;
+  Result rl = subdivide(left.points, polygons(left), {}, p);
+  Result rr = subdivide(right.points, polygons(right), {}, p);
+  std::vector<Point3> on_left, on_right;
+  for (const auto& q : rl.mesh.points) if (q[0] == 1.0) on_left.push_back(q);
+  for (const auto& q : rr.mesh.points) if (q[0] == 1.0) on_right.push_back(q);
+  auto by_y = [](const Point3& a, const Point3& b) { return a[1] < b[1]; };
+  std::sort(on_left.begin(), on_left.end(), by_y);
+  std::sort(on_right.begin(), on_right.end(), by_y);
+  ASSERT_EQ(on_left.size(), 21u);  // 5 * 4 + 1 vertices along the shared side
+  ASSERT_EQ(on_left.size(), on_right.size());
+  for (size_t i = 0; i < on_left.size(); ++i) {
+    EXPECT_EQ(on_left[i][1], on_right[i][1]);
+    EXPECT_EQ(on_left[i][2], on_right[i][2]);
+  }
+}
+
+TEST(QuadSub, CreaseStaysSharpAndInterpolated) {
+  // A grid folded by 90 degrees along x = 0.5: planes z = 0 and x = 0.5.
+  const int n = 6;
+  QuadMesh m = grid(n, [](double, double) { return 0.0; });
+  for (auto& p : m.points)
+    if (p[0] > 0.5) { p[2] = p[0] - 0.5; p[0] = 0.5; }
+  EdgeList crease;
+  for (int j = 0; j < n; ++j) crease.push_back({j * (n + 1) + n / 2, (j + 1) * (n + 1) + n / 2});
+  auto off_planes = [](const QuadMesh& out) {
+    int off = 0;
+    for (const auto& p : out.points) {
+      off += std::fabs(p[2]) > 1e-12 && std::fabs(p[0] - 0.5) > 1e-12;
+    }
+    return off;
+  };
+  Params p;
+  p.iterations = 2;
+  Result sharp = subdivide(m.points, polygons(m), crease, p);
+  EXPECT_EQ(off_planes(sharp.mesh), 0);
+  EXPECT_EQ(sharp.creases.size(), crease.size() * 4);
+  Result smooth = subdivide(m.points, polygons(m), {}, p);
+  EXPECT_GT(off_planes(smooth.mesh), 0);  // without the crease the fold is rounded
+  Params by_angle = p;
+  by_angle.crease_angle_deg = 45;
+  Result detected = subdivide(m.points, polygons(m), {}, by_angle);
+  EXPECT_EQ(off_planes(detected.mesh), 0);
+}
+
+TEST(QuadSub, ClosedCubeStaysClosedAndNonQuadsAreSplit) {
+  std::vector<Point3> pts = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  std::vector<std::vector<int>> faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  Params p;
+  p.iterations = 2;
+  Result r = subdivide(pts, faces, {}, p);
+  EXPECT_EQ(r.extraordinary_vertices, 8);
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& q : r.mesh.quads)
+    for (int s = 0; s < 4; ++s) ++uses[std::minmax(q[s], q[(s + 1) % 4])];
+  for (const auto& [e, c] : uses) EXPECT_EQ(c, 2);
+  EXPECT_EQ(int(r.mesh.points.size()) - int(uses.size()) + int(r.mesh.quads.size()), 2);  // Euler
+  // a triangle and a pentagon become 3 and 5 quads
+  QuadMesh q = quads_from_polygons({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}, {1, 2, 0}},
+                                   {{0, 1, 2}, {1, 3, 4, 5, 2}});
+  EXPECT_EQ(q.quads.size(), 8u);
+}
+
+TEST(QuadSub, BadInputIsRejected) {
+  QuadMesh m = grid(2, [](double, double) { return 0.0; });
+  Params p;
+  p.w = 1.3;
+  EXPECT_THROW(subdivide(m.points, polygons(m), {}, p), InvalidInput);
+  p.w = -0.1;
+  EXPECT_THROW(subdivide(m.points, polygons(m), {}, p), InvalidInput);
+  p = {};
+  p.iterations = 0;
+  EXPECT_THROW(subdivide(m.points, polygons(m), {}, p), InvalidInput);
+  EXPECT_THROW(subdivide(m.points, {}, {}, Params{}), InvalidInput);
+  auto bad = m.points;
+  bad[0][0] = std::nan("");
+  EXPECT_THROW(subdivide(bad, polygons(m), {}, Params{}), InvalidInput);
+  // three quads on one edge
+  std::vector<Point3> pts = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, -1, 0}, {0, -1, 0}, {1, 0, 1}, {0, 0, 1}};
+  EXPECT_THROW(subdivide(pts, {{0, 1, 2, 3}, {1, 0, 5, 4}, {0, 1, 6, 7}}, {}, Params{}), TopologyError);
+}
