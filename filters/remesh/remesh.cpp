@@ -52,6 +52,7 @@ void build_output(const OutputMesh& out, const std::vector<std::array<int, 2>>& 
   for (size_t v = 0; v < out.points.size(); ++v)
     if (index[v] >= 0) {
       m.vert[index[v]].P() = out.points[v];
+      m.vert[index[v]].Q() = double(int(out.kind[v]));
       if (out.kind[v] == PointKind::Corner) m.vert[index[v]].SetS();
     }
   vcg::tri::Allocator<TriMesh>::AddFaces(m, out.faces.size());

@@ -49,7 +49,8 @@ struct Result {
 };
 
 /// Remeshes `input` (not modified) into `output` (cleared first): feature edges are flagged
-/// with FaceEdgeS, corners are selected vertices.
+/// with FaceEdgeS, corners are selected vertices, and vertex quality holds the point kind
+/// (0 free, 1 on a feature line, 2 corner).
 /// \pre input is compact.
 /// \throw InvalidInput on empty input, a point cloud, NaN coordinates, a target length <= 0 or
 ///        larger than the bbox diagonal, or other bad parameters.

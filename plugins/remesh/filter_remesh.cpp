@@ -115,8 +115,11 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       mr::bridge::run_core(name, [&] { return mr::remesh::remesh(copy.mesh, p, output); });
   MeshModel* layer = md.addNewMesh("", model->label() + " remeshed", true);
   mr::bridge::copy_from_core(output, layer->cm);
-  for (size_t i = 0; i < output.vert.size(); ++i)
+  auto kind = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(layer->cm, "point_kind");
+  for (size_t i = 0; i < output.vert.size(); ++i) {
     if (output.vert[i].IsS()) layer->cm.vert[i].SetS();
+    kind[layer->cm.vert[i]] = Scalarm(output.vert[i].cQ());
+  }
   layer->updateBoxAndNormals();
 
   const double ms = double(timer.nsecsElapsed()) * 1e-6;
