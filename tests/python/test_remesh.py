@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import pymeshlab
-from conftest import assert_unchanged, load, raises_on, snapshot
+from conftest import assert_unchanged, load, raises_on, shared_mesh, snapshot
 
 RIDGE_ANGLE = 30.0
 
@@ -193,3 +193,18 @@ def test_bad_input_raises_and_changes_nothing():
     nan.add_mesh(pymeshlab.Mesh(v, np.array([[0, 1, 2], [0, 2, 3]])))
     with raises_on(nan, "finite|NaN"):
         nan.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(0.1))
+
+
+def test_pipeline_and_cli(tmp_path):
+    from meshregrid import cli, pipeline_remesh
+
+    ms = load("cad/part.off")
+    res = pipeline_remesh.remesh(ms, target_percent=3.0)
+    assert res["unmeshed_sides"] == 0 and res["features"]["patches"] == res["patches"]
+    assert ms.mesh_number() == 2 and ms.current_mesh().face_number() == res["faces"]
+    out = tmp_path / "part_remeshed.ply"
+    rc = cli.main(["remesh", str(shared_mesh("cad/part.off")), str(out), "--target-percent", "3"])
+    assert rc == 0
+    back = pymeshlab.MeshSet()
+    back.load_new_mesh(str(out))
+    assert back.current_mesh().face_number() == res["faces"]

@@ -121,3 +121,31 @@ TEST(RemeshPieces, AdvancingFrontFillsASquare) {
   }
   EXPECT_NEAR(area, 1.0, 1e-9);
 }
+
+TEST(RemeshPieces, FrontThatCannotCloseTerminatesAndReports) {
+  // The square's boundary run clockwise puts the "unmeshed" side outside the patch: the front
+  // can place nothing valid there and must stop with its sides reported, not loop.
+  TriMesh m;
+  test::grid(m, 4);
+  const Surface s = Surface::from_mesh(m, {});
+  const SurfaceLocator loc(s, 0.1);
+  const SizeField size(s, std::vector<double>(s.points.size(), 0.1));
+  OutputMesh out;
+  std::vector<int> ring;
+  for (int k = 0; k < 40; ++k) {
+    const int side = k / 10;
+    const double t = (k % 10) / 10.0;
+    const Point3 p = side == 0 ? Point3(t, 0, 0) : side == 1 ? Point3(1, t, 0) : side == 2 ? Point3(1 - t, 1, 0) : Point3(0, 1 - t, 0);
+    ring.push_back(out.add_point(p, -1, PointKind::Line));
+  }
+  std::vector<FrontSide> front;
+  for (int k = 0; k < 40; ++k) front.push_back({ring[(k + 1) % 40], ring[k]});
+  const FrontResult r = advance_front(out, front, 0, loc, size);
+  EXPECT_GT(r.unmeshed_sides, 0);
+  EXPECT_FALSE(r.iteration_limit);
+  // Whatever was generated lies on the patch.
+  for (const auto& p : out.points) {
+    EXPECT_GE(p[0], -1e-9);
+    EXPECT_LE(p[0], 1 + 1e-9);
+  }
+}

@@ -1,0 +1,38 @@
+"""Pipeline: feature lines and patches, then advancing-front remeshing, with sane defaults."""
+import pymeshlab
+
+from . import pipelines
+
+RECOVERY = {"linear": 0, "closest": 1, "quadratic": 2, "cubic": 3}
+
+
+def remesh(ms: pymeshlab.MeshSet, target_length=None, target_percent: float = 1.0, ridge_angle: float = 30.0,
+           corner_angle: float = 45.0, max_surface_error: float = 0.0, gradation: float = 1.3,
+           recovery: str = "linear", improvement_iterations: int = 3, progress: bool = False) -> dict:
+    """Remeshes the current mesh of ``ms`` into a new layer (which becomes current).
+
+    ``target_length`` is absolute; without it ``target_percent`` of the bounding-box diagonal
+    is used (1% by default). ``max_surface_error`` (absolute, 0 = off) turns on curvature
+    adaptation. Returns the filter's dictionary plus ``features``, the feature filter's
+    dictionary on the input (the input keeps its geometry; the feature filter only adds
+    selections, colours and the ``patch_id`` attribute).
+    """
+    if recovery not in RECOVERY:
+        raise ValueError(f"recovery must be one of {sorted(RECOVERY)}, got {recovery!r}")
+    source = ms.current_mesh_id()
+    features = pipelines.detect_features(ms, ridge_angle=ridge_angle, corner_angle=corner_angle, lines_layer=False)
+    ms.set_current_mesh(source)
+    length = (pymeshlab.PureValue(target_length) if target_length is not None
+              else pymeshlab.PercentageValue(target_percent))
+    if progress:
+        ms.set_verbosity(True)
+    try:
+        result = ms.meshing_advancing_front_remesh(
+            target_length=length, ridge_angle=ridge_angle, corner_angle=corner_angle,
+            max_surface_error=pymeshlab.PureValue(max_surface_error), gradation=gradation,
+            recovery=RECOVERY[recovery], improvement_iterations=improvement_iterations)
+    finally:
+        if progress:
+            ms.set_verbosity(False)
+    result["features"] = features
+    return result
