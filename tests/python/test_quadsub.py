@@ -113,3 +113,13 @@ def test_point_cloud_raises():
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=np.random.default_rng(0).random((20, 3))))
     with raises_on(ms, "no faces"):
         ms.meshing_surface_subdivision_interpolatory_quad()
+
+
+def test_convergence_rate_is_fourth_order_on_a_smooth_height_field():
+    import sys
+    from conftest import REPO
+    sys.path.insert(0, str(REPO / "scripts"))
+    import convergence_quad
+    l1 = [convergence_quad.errors("height field", n)[0] for n in (8, 16, 32)]
+    # cubic precision on regular grids: one step's error falls like h^4 (ratio 16 per halving)
+    assert l1[0] / l1[1] > 14 and l1[1] / l1[2] > 14
