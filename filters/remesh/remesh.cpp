@@ -79,7 +79,7 @@ std::vector<double> small_feature_caps(const TriMesh& mesh, const features::Resu
     for (size_t k = 0; k + 1 < n + (line.closed ? 1 : 0); ++k)
       length += (mesh.vert[line.vertices[k]].cP() - mesh.vert[line.vertices[(k + 1) % n]].cP()).Norm();
     if (length >= target) continue;
-    const double h = std::max(length, target / 8.0);
+    const double h = std::max(length, target / 3.0);
     for (int v : line.vertices) cap[v] = cap[v] > 0 ? std::min(cap[v], h) : h;
   }
   return cap;
