@@ -192,6 +192,52 @@ int split_t_junctions(Soup& s, const std::vector<SoupEdge>& edges, const std::ve
   return count;
 }
 
+/// Weld classes of the accepted pairs. A pair that, through the classes it
+/// joins, would collapse a face or put three faces on one edge (a triple seam,
+/// a fold of the border onto itself) is dropped, and the classes rebuilt.
+template <class Pairs>
+std::vector<int> weld_without_defects(const Soup& s, const std::vector<SoupEdge>& edges, const Clusters& clusters,
+                                      Pairs pairs, std::vector<std::array<int, 2>>& seam_edges) {
+  const int n = int(s.pos.size());
+  std::vector<int> cls(n);
+  for (int round = 0; round < 20; ++round) {
+    UnionFind weld(n);
+    for (const auto& p : pairs) {
+      const SoupEdge &e = edges[p.e], &g = edges[p.g];
+      if (clusters.id(e.v0) == clusters.id(g.v0)) { weld.unite(e.v0, g.v0); weld.unite(e.v1, g.v1); }
+      else { weld.unite(e.v0, g.v1); weld.unite(e.v1, g.v0); }
+    }
+    for (int v = 0; v < n; ++v) cls[v] = weld.find(v);
+    // Faces per welded edge.
+    std::vector<std::pair<uint64_t, int>> welded_sides;
+    for (size_t f = 0; f < s.tri.size(); ++f)
+      for (int z = 0; z < 3; ++z)
+        welded_sides.push_back({edge_key(cls[s.tri[f][z]], cls[s.tri[f][(z + 1) % 3]]), int(f)});
+    std::sort(welded_sides.begin(), welded_sides.end());
+    std::vector<char> bad_vertex(n, 0);
+    for (size_t i = 0; i < welded_sides.size();) {
+      size_t j = i;
+      while (j < welded_sides.size() && welded_sides[j].first == welded_sides[i].first) ++j;
+      const uint64_t k = welded_sides[i].first;
+      const bool collapsed = (k >> 32) == (k & 0xffffffffu);
+      if (collapsed || j - i > 2)
+        for (size_t x = i; x < j; ++x)
+          for (int v : s.tri[welded_sides[x].second]) bad_vertex[v] = 1;
+      i = j;
+    }
+    Pairs kept;
+    for (const auto& p : pairs) {
+      const SoupEdge &e = edges[p.e], &g = edges[p.g];
+      if (!(bad_vertex[e.v0] || bad_vertex[e.v1] || bad_vertex[g.v0] || bad_vertex[g.v1])) kept.push_back(p);
+    }
+    if (kept.size() == pairs.size()) break;
+    pairs.swap(kept);
+  }
+  seam_edges.clear();
+  for (const auto& p : pairs) seam_edges.push_back({edges[p.e].v0, edges[p.e].v1});
+  return cls;
+}
+
 }  // namespace
 
 Pairing pair_borders(Soup& s, double vtol, double etol) {
@@ -239,7 +285,8 @@ Pairing pair_borders(Soup& s, double vtol, double etol) {
     if (ca != cb) keyed.push_back({edge_key(ca, cb), int(e)});
   }
   std::sort(keyed.begin(), keyed.end());
-  UnionFind weld(int(s.pos.size()));
+  struct Pair { int e, g; };
+  std::vector<Pair> pairs;
   for (size_t i = 0; i < keyed.size();) {
     size_t j = i;
     while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
@@ -258,17 +305,13 @@ Pairing pair_borders(Soup& s, double vtol, double etol) {
       if (d > etol) { any_rejected = true; continue; }
       used.push_back(x);
       used.push_back(y);
-      const SoupEdge &e = edges[x], &g = edges[y];
-      if (clusters.id(e.v0) == clusters.id(g.v0)) { weld.unite(e.v0, g.v0); weld.unite(e.v1, g.v1); }
-      else { weld.unite(e.v0, g.v1); weld.unite(e.v1, g.v0); }
-      out.seam_edges.push_back({e.v0, e.v1});
-      ++out.pairs;
+      pairs.push_back({x, y});
     }
     if (any_rejected && used.empty()) ++out.rejected;
     i = j;
   }
-  out.weld_class.resize(s.pos.size());
-  for (int v = 0; v < int(s.pos.size()); ++v) out.weld_class[v] = weld.find(v);
+  out.weld_class = weld_without_defects(s, edges, clusters, pairs, out.seam_edges);
+  out.pairs = int(out.seam_edges.size());
   return out;
 }
 
