@@ -14,8 +14,14 @@ namespace {
 // mesh; refusing to grow it keeps the pairwise checks cheap.
 constexpr size_t kMaxCluster = 16;
 
-bool adjacent(const std::vector<std::vector<int>>& nb, int a, int b) {
-  return std::binary_search(nb[a].begin(), nb[a].end(), b);
+/// True if a and b share an edge (edges are sorted by (v0, v1)).
+bool adjacent(const SoupEdges& edges, int a, int b) {
+  if (a > b) std::swap(a, b);
+  auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, b),
+                             [](const SoupEdge& e, const std::pair<int, int>& k) {
+                               return e.v0 < k.first || (e.v0 == k.first && e.v1 < k.second);
+                             });
+  return it != edges.end() && it->v0 == a && it->v1 == b;
 }
 
 double segment_param(const Point3& p, const Point3& a, const Point3& b) {
@@ -45,7 +51,7 @@ double segment_hausdorff(const Point3& a, const Point3& b, const Point3& c, cons
 /// keeping every cluster within `tol` in diameter and free of mesh edges.
 class Clusters {
 public:
-  Clusters(const Soup& s, const std::vector<std::vector<int>>& nb, double tol)
+  Clusters(const Soup& s, const SoupEdges& nb, double tol)
       : s_(s), nb_(nb), tol_(tol), id_(s.pos.size()), members_(s.pos.size()) {
     for (size_t v = 0; v < id_.size(); ++v) { id_[v] = int(v); members_[v] = {int(v)}; }
   }
@@ -86,7 +92,7 @@ public:
 
 private:
   const Soup& s_;
-  const std::vector<std::vector<int>>& nb_;
+  const SoupEdges& nb_;
   double tol_;
   std::vector<int> id_;
   std::vector<std::vector<int>> members_;
@@ -104,7 +110,7 @@ struct Split {
 
 /// Step 2: splits border edges at border vertices of other edges that lie within
 /// `tol` of their interior. Returns the number of splits.
-int split_t_junctions(Soup& s, const std::vector<SoupEdge>& edges, const std::vector<int>& border,
+int split_t_junctions(Soup& s, const SoupEdges& edges, const std::vector<int>& border,
                       const std::vector<char>& is_border_vertex, Clusters& clusters, double tol) {
   double mean_len = 0;
   for (int e : border) mean_len += vcg::Distance(s.pos[edges[e].v0], s.pos[edges[e].v1]);
@@ -196,7 +202,7 @@ int split_t_junctions(Soup& s, const std::vector<SoupEdge>& edges, const std::ve
 /// joins, would collapse a face or put three faces on one edge (a triple seam,
 /// a fold of the border onto itself) is dropped, and the classes rebuilt.
 template <class Pairs>
-std::vector<int> weld_without_defects(const Soup& s, const std::vector<SoupEdge>& edges, const Clusters& clusters,
+std::vector<int> weld_without_defects(const Soup& s, const SoupEdges& edges, const Clusters& clusters,
                                       Pairs pairs, std::vector<std::array<int, 2>>& seam_edges) {
   const int n = int(s.pos.size());
   std::vector<int> cls(n);
@@ -207,12 +213,15 @@ std::vector<int> weld_without_defects(const Soup& s, const std::vector<SoupEdge>
       if (clusters.id(e.v0) == clusters.id(g.v0)) { weld.unite(e.v0, g.v0); weld.unite(e.v1, g.v1); }
       else { weld.unite(e.v0, g.v1); weld.unite(e.v1, g.v0); }
     }
-    for (int v = 0; v < n; ++v) cls[v] = weld.find(v);
-    // Faces per welded edge.
+    std::vector<char> welded(n, 0);
+    for (int v = 0; v < n; ++v) { cls[v] = weld.find(v); if (cls[v] != v) welded[v] = welded[cls[v]] = 1; }
+    // Faces per welded edge; only faces touching a welded vertex can change.
     std::vector<std::pair<uint64_t, int>> welded_sides;
-    for (size_t f = 0; f < s.tri.size(); ++f)
+    for (size_t f = 0; f < s.tri.size(); ++f) {
+      if (!(welded[s.tri[f][0]] || welded[s.tri[f][1]] || welded[s.tri[f][2]])) continue;
       for (int z = 0; z < 3; ++z)
         welded_sides.push_back({edge_key(cls[s.tri[f][z]], cls[s.tri[f][(z + 1) % 3]]), int(f)});
+    }
     std::sort(welded_sides.begin(), welded_sides.end());
     std::vector<char> bad_vertex(n, 0);
     for (size_t i = 0; i < welded_sides.size();) {
@@ -251,10 +260,9 @@ Pairing pair_borders(Soup& s, double vtol, double etol) {
       is_border_vertex[edges[e].v0] = is_border_vertex[edges[e].v1] = 1;
     }
   out.border_edges = int(border.size());
-  const auto nb = vertex_neighbours(s);
 
   // Step 1: candidate clusters from border vertex pairs, closest first.
-  Clusters clusters(s, nb, vtol);
+  Clusters clusters(s, edges, vtol);
   {
     UniformGrid grid(vtol);
     for (int v = 0; v < int(s.pos.size()); ++v)
@@ -265,7 +273,7 @@ Pairing pair_borders(Soup& s, double vtol, double etol) {
       grid.visit(s.pos[u], vtol, [&](int v) {
         if (v <= u) return;
         const double d = vcg::Distance(s.pos[u], s.pos[v]);
-        if (d <= vtol && !adjacent(nb, u, v)) close.emplace_back(d, u, v);
+        if (d <= vtol && !adjacent(edges, u, v)) close.emplace_back(d, u, v);
       });
     }
     std::sort(close.begin(), close.end());

@@ -17,10 +17,9 @@ double point_segment_distance(const Point3& p, const Point3& a, const Point3& b)
 
 }  // namespace
 
-OpenBorders find_open_borders(const Soup& s, double radius) {
+OpenBorders find_open_borders(const Soup& s, const SoupEdges& edges, double radius) {
   OpenBorders out;
   out.side_open.assign(s.tri.size(), {false, false, false});
-  const auto edges = soup_edges(s);
   std::vector<int> open;
   UnionFind loops(int(s.pos.size()));
   std::vector<char> on_border(s.pos.size(), 0);

@@ -16,58 +16,69 @@
 namespace mr::healing {
 namespace {
 
-void check_params(const Params& p, const TriMesh& mesh) {
+void check_params(const Params& p, double diag) {
   if (!std::isfinite(p.vertex_tolerance) || p.vertex_tolerance <= 0)
     throw InvalidInput("vertex_tolerance must be a positive length (got " + std::to_string(p.vertex_tolerance) + ")");
   if (!std::isfinite(p.edge_tolerance) || p.edge_tolerance < 0)
     throw InvalidInput("edge_tolerance must be 0 (same as vertex_tolerance) or a positive length");
   if (!(p.feature_angle_deg > 0 && p.feature_angle_deg < 180))
     throw InvalidInput("feature_angle must be in (0, 180) degrees");
-  const double diag = mesh.bbox.Diag();
   if (diag > 0 && p.vertex_tolerance > 0.25 * diag)
     throw InvalidInput("vertex_tolerance is more than a quarter of the bounding box diagonal: "
                        "it would weld unrelated parts; use a tolerance near the gap width");
 }
 
-Soup to_soup(const TriMesh& mesh, const std::vector<int>& face_patch) {
-  Soup s;
-  s.pos.reserve(mesh.vert.size());
-  for (const auto& v : mesh.vert) s.pos.push_back(v.cP());
-  for (size_t f = 0; f < mesh.face.size(); ++f) {
-    const auto& face = mesh.face[f];
-    s.tri.push_back({int(vcg::tri::Index(mesh, face.cV(0))), int(vcg::tri::Index(mesh, face.cV(1))),
-                     int(vcg::tri::Index(mesh, face.cV(2)))});
-    s.patch.push_back(face_patch[f]);
+/// Bounding-box diagonal; throws on empty input, missing faces, NaN or bad indices.
+double check_surface(const std::vector<Point3>& points, const std::vector<std::array<int, 3>>& faces) {
+  if (points.empty()) throw InvalidInput("the input mesh is empty: load a triangle mesh first");
+  if (faces.empty())
+    throw InvalidInput("the input mesh has no faces (a point cloud?): this filter needs triangle patches");
+  Box3 box;
+  for (const auto& p : points) {
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw InvalidInput("the input mesh has NaN or infinite vertex coordinates: fix or delete those vertices first");
+    box.Add(p);
   }
-  return s;
+  for (const auto& t : faces)
+    for (int v : t)
+      if (v < 0 || v >= int(points.size())) throw InvalidInput("a face refers to a vertex that does not exist");
+  return box.Diag();
 }
 
 }  // namespace
 
-std::vector<int> connected_patches(const TriMesh& mesh) {
-  UnionFind uf(int(mesh.vert.size()));
-  for (const auto& f : mesh.face) {
-    uf.unite(int(vcg::tri::Index(mesh, f.cV(0))), int(vcg::tri::Index(mesh, f.cV(1))));
-    uf.unite(int(vcg::tri::Index(mesh, f.cV(0))), int(vcg::tri::Index(mesh, f.cV(2))));
-  }
-  std::vector<int> id_of_root(mesh.vert.size(), -1), patch(mesh.face.size());
+std::vector<int> connected_patches(int vertex_count, const std::vector<std::array<int, 3>>& faces) {
+  UnionFind uf(vertex_count);
+  for (const auto& t : faces) { uf.unite(t[0], t[1]); uf.unite(t[0], t[2]); }
+  std::vector<int> id_of_root(vertex_count, -1), patch(faces.size());
   int next = 0;
-  for (size_t f = 0; f < mesh.face.size(); ++f) {
-    int& id = id_of_root[uf.find(int(vcg::tri::Index(mesh, mesh.face[f].cV(0))))];
+  for (size_t f = 0; f < faces.size(); ++f) {
+    int& id = id_of_root[uf.find(faces[f][0])];
     if (id < 0) id = next++;
     patch[f] = id;
   }
   return patch;
 }
 
-Result heal(const TriMesh& mesh, const std::vector<int>& face_patch_in, const Params& params) {
-  const auto start = std::chrono::steady_clock::now();
+Result heal(const TriMesh& mesh, const std::vector<int>& face_patch, const Params& params) {
   require_triangle_surface(mesh);
-  check_params(params, mesh);
-  if (!face_patch_in.empty() && face_patch_in.size() != mesh.face.size())
-    throw InvalidInput("the patch labels do not match the faces (" + std::to_string(face_patch_in.size()) +
-                       " labels for " + std::to_string(mesh.face.size()) + " faces)");
-  const std::vector<int> face_patch = face_patch_in.empty() ? connected_patches(mesh) : face_patch_in;
+  std::vector<Point3> points;
+  for (const auto& v : mesh.vert) points.push_back(v.cP());
+  std::vector<std::array<int, 3>> faces;
+  for (const auto& f : mesh.face)
+    faces.push_back({int(vcg::tri::Index(mesh, f.cV(0))), int(vcg::tri::Index(mesh, f.cV(1))),
+                     int(vcg::tri::Index(mesh, f.cV(2)))});
+  return heal(std::move(points), std::move(faces), face_patch, params);
+}
+
+Result heal(std::vector<Point3> points, std::vector<std::array<int, 3>> faces, std::vector<int> face_patch,
+            const Params& params) {
+  const auto start = std::chrono::steady_clock::now();
+  check_params(params, check_surface(points, faces));
+  if (!face_patch.empty() && face_patch.size() != faces.size())
+    throw InvalidInput("the patch labels do not match the faces (" + std::to_string(face_patch.size()) +
+                       " labels for " + std::to_string(faces.size()) + " faces)");
+  if (face_patch.empty()) face_patch = connected_patches(int(points.size()), faces);
   const double vtol = params.vertex_tolerance;
   const double etol = params.edge_tolerance > 0 ? params.edge_tolerance : vtol;
 
@@ -77,7 +88,7 @@ Result heal(const TriMesh& mesh, const std::vector<int>& face_patch_in, const Pa
     std::sort(labels.begin(), labels.end());
     r.patches_in = int(std::unique(labels.begin(), labels.end()) - labels.begin());
   }
-  Soup soup = to_soup(mesh, face_patch);
+  Soup soup{std::move(points), std::move(faces), face_patch};
   const Pairing pairing = pair_borders(soup, vtol, etol);
   r.boundary_edges_before = pairing.border_edges;
   r.borders_paired = pairing.pairs;
@@ -98,15 +109,16 @@ Result heal(const TriMesh& mesh, const std::vector<int>& face_patch_in, const Pa
   r.faces_flipped = orientation.faces_flipped;
   r.orientation_conflicts = orientation.conflicts;
 
-  const OpenBorders open = find_open_borders(welded.soup, 10 * vtol);
+  const SoupEdges edges = soup_edges(welded.soup);
+  const OpenBorders open = find_open_borders(welded.soup, edges, 10 * vtol);
   r.boundary_edges_after = open.edges;
   r.open_loops = open.loops;
   r.gaps_left = open.gaps;
   r.largest_gap = open.largest_gap;
   r.open_border = open.side_open;
-  for (const auto& e : soup_edges(welded.soup)) r.non_manifold_edges_after += e.sides.size() > 2;
+  for (const auto& e : edges) r.non_manifold_edges_after += e.sides.size() > 2;
 
-  Regions regions = group_patches(welded.soup, seams, params.feature_angle_deg);
+  Regions regions = group_patches(welded.soup, edges, seams, params.feature_angle_deg);
   r.feature = std::move(regions.feature);
   r.face_group = std::move(regions.group);
   r.feature_edges = regions.feature_edges;

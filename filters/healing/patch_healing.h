@@ -57,13 +57,17 @@ struct Result {
   double time_ms = 0;
 };
 
-/// Heals `mesh`. `face_patch` gives the patch of every face; empty means
-/// "connected components" (faces sharing a vertex index are one patch).
-/// \throw InvalidInput on an empty or NaN mesh or bad parameters.
+/// Heals the indexed triangles. `face_patch` gives the patch of every face;
+/// empty means "connected components" (faces sharing a vertex index are one patch).
+/// \throw InvalidInput on an empty or NaN mesh, bad indices or bad parameters.
+Result heal(std::vector<Point3> points, std::vector<std::array<int, 3>> faces, std::vector<int> face_patch,
+            const Params& params);
+
+/// The same on a VCG mesh.
 Result heal(const TriMesh& mesh, const std::vector<int>& face_patch, const Params& params);
 
 /// Patches as connected components over shared vertex indices, numbered in
 /// order of their first face.
-std::vector<int> connected_patches(const TriMesh& mesh);
+std::vector<int> connected_patches(int vertex_count, const std::vector<std::array<int, 3>>& faces);
 
 }  // namespace mr::healing

@@ -6,7 +6,7 @@
 
 namespace mr::healing {
 
-Regions group_patches(const Soup& s, const std::vector<std::array<int, 2>>& welded, double angle_deg) {
+Regions group_patches(const Soup& s, const SoupEdges& edges, const std::vector<std::array<int, 2>>& welded, double angle_deg) {
   Regions out;
   const int nf = int(s.tri.size());
   out.feature.assign(nf, {false, false, false});
@@ -23,7 +23,7 @@ Regions group_patches(const Soup& s, const std::vector<std::array<int, 2>>& weld
   }
   const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
   UnionFind groups(nf);
-  for (const auto& e : soup_edges(s)) {
+  for (const auto& e : edges) {
     if (e.sides.size() != 2) continue;
     const int f = e.sides[0][0], g = e.sides[1][0];
     const bool seam = s.patch[f] != s.patch[g] ||

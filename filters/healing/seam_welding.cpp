@@ -22,9 +22,14 @@ Welded weld_classes(const Soup& s, const std::vector<int>& weld_class) {
     tris.push_back(t);
     patches.push_back(s.patch[f]);
   }
-  // Drop a face whose three vertices another earlier face already has.
+  // Drop a face whose three vertices another earlier face already has; only
+  // faces with a welded vertex can have become duplicates.
+  std::vector<char> welded(n, 0);
+  for (int v = 0; v < n; ++v)
+    if (weld_class[v] != v) welded[v] = welded[weld_class[v]] = 1;
   std::vector<std::pair<std::array<int, 3>, int>> order;
   for (size_t f = 0; f < tris.size(); ++f) {
+    if (!(welded[tris[f][0]] || welded[tris[f][1]] || welded[tris[f][2]])) continue;
     auto key = tris[f];
     std::sort(key.begin(), key.end());
     order.push_back({key, int(f)});

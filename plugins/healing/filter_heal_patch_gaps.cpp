@@ -1,7 +1,6 @@
 #include "filter_heal_patch_gaps.h"
 
 #include "common/error_translation.h"
-#include "common/mesh_bridge.h"
 #include "healing/patch_healing.h"
 
 #include <QElapsedTimer>
@@ -76,33 +75,41 @@ RichParameterList FilterHealPatchGapsPlugin::initParameterList(const QAction*, c
 
 namespace {
 
-/// Appends `src`'s live faces to `dst` with patch label `patch` (or the
-/// patch_id attribute when `patch < 0`).
-void append_patches(const CMeshO& src, int patch, mr::TriMesh& dst, std::vector<int>& face_patch) {
-  mr::bridge::CoreCopy copy;
-  mr::bridge::copy_to_core(src, copy);
-  const int base = int(dst.vert.size());
-  vcg::tri::Allocator<mr::TriMesh>::AddVertices(dst, copy.mesh.vert.size());
-  for (size_t v = 0; v < copy.mesh.vert.size(); ++v) dst.vert[base + v].P() = copy.mesh.vert[v].cP();
-  auto fi = vcg::tri::Allocator<mr::TriMesh>::AddFaces(dst, copy.mesh.face.size());
-  (void)fi;
-  const size_t fbase = dst.face.size() - copy.mesh.face.size();
+/// The live vertices and faces of the layers, as the core takes them.
+struct Patches {
+  std::vector<mr::Point3> points;
+  std::vector<std::array<int, 3>> faces;
+  std::vector<int> face_patch;
+};
+
+/// Appends `src`'s live faces with patch label `patch` (or the patch_id
+/// attribute when `patch < 0`).
+void append_patches(const CMeshO& src, int patch, Patches& out) {
+  const int base = int(out.points.size());
+  std::vector<int> index(src.vert.size(), -1);
+  for (size_t v = 0; v < src.vert.size(); ++v) {
+    if (src.vert[v].IsD()) continue;
+    index[v] = int(out.points.size());
+    const auto& p = src.vert[v].cP();
+    out.points.emplace_back(p[0], p[1], p[2]);
+  }
+  (void)base;
   auto attr = patch < 0 ? vcg::tri::Allocator<CMeshO>::FindPerFaceAttribute<Scalarm>(const_cast<CMeshO&>(src), "patch_id")
                         : CMeshO::PerFaceAttributeHandle<Scalarm>();
-  for (size_t f = 0; f < copy.mesh.face.size(); ++f) {
-    for (int z = 0; z < 3; ++z)
-      dst.face[fbase + f].V(z) = &dst.vert[base + vcg::tri::Index(copy.mesh, copy.mesh.face[f].cV(z))];
+  for (size_t f = 0; f < src.face.size(); ++f) {
+    const CFaceO& face = src.face[f];
+    if (face.IsD()) continue;
+    out.faces.push_back({index[vcg::tri::Index(src, face.cV(0))], index[vcg::tri::Index(src, face.cV(1))],
+                         index[vcg::tri::Index(src, face.cV(2))]});
     if (patch >= 0) {
-      face_patch.push_back(patch);
+      out.face_patch.push_back(patch);
     } else {
-      const Scalarm id = attr[copy.source_face[f]];
+      const Scalarm id = attr[f];
       if (!std::isfinite(double(id)))
         throw MLException(QString("%1: the patch_id attribute has a NaN value").arg(kFilter));
-      face_patch.push_back(int(std::lround(double(id))));
+      out.face_patch.push_back(int(std::lround(double(id))));
     }
   }
-  dst.bbox.SetNull();
-  for (const auto& v : dst.vert) dst.bbox.Add(v.cP());
 }
 
 void write_layer(const mr::healing::Result& r, MeshModel& layer, bool color_groups) {
@@ -110,7 +117,7 @@ void write_layer(const mr::healing::Result& r, MeshModel& layer, bool color_grou
   cm.Clear();
   vcg::tri::Allocator<CMeshO>::AddVertices(cm, r.points.size());
   vcg::tri::Allocator<CMeshO>::AddFaces(cm, r.faces.size());
-  layer.updateDataMask(MeshModel::MM_VERTQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_FACEFACETOPO);
+  layer.updateDataMask(MeshModel::MM_VERTQUALITY | MeshModel::MM_FACECOLOR);
   for (size_t v = 0; v < r.points.size(); ++v) {
     cm.vert[v].P() = Point3m(r.points[v][0], r.points[v][1], r.points[v][2]);
     cm.vert[v].Q() = Scalarm(r.vertex_move[v]);
@@ -137,7 +144,6 @@ void write_layer(const mr::healing::Result& r, MeshModel& layer, bool color_grou
   vcg::tri::UpdateSelection<CMeshO>::VertexCount(cm);
   vcg::tri::UpdateBounding<CMeshO>::Box(cm);
   vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFace(cm);
-  vcg::tri::UpdateTopology<CMeshO>::FaceFace(cm);
 }
 
 }  // namespace
@@ -150,13 +156,12 @@ std::map<std::string, QVariant> FilterHealPatchGapsPlugin::applyFilter(
   if (current == nullptr) throw MLException(QString("%1: there is no current mesh").arg(kFilter));
 
   const int source = params.getEnum("patch_source");
-  mr::TriMesh input;
-  std::vector<int> face_patch;
+  Patches input;
   QString label = current->label();
   if (source == VISIBLE_LAYERS) {
     int layer = 0, used = 0;
     for (MeshModel& m : md.meshIterator()) {
-      if (m.isVisible() && m.cm.fn > 0) { append_patches(m.cm, layer, input, face_patch); ++used; }
+      if (m.isVisible() && m.cm.fn > 0) { append_patches(m.cm, layer, input); ++used; }
       ++layer;
     }
     if (used == 0) throw MLException(QString("%1: no visible layer has faces").arg(kFilter));
@@ -169,8 +174,8 @@ std::map<std::string, QVariant> FilterHealPatchGapsPlugin::applyFilter(
         !vcg::tri::HasPerFaceAttribute(current->cm, std::string("patch_id")))
       throw MLException(QString("%1: the current mesh has no per-face attribute patch_id; run Select Feature "
                                 "Lines and Surface Patches first or use connected components").arg(kFilter));
-    append_patches(current->cm, source == PATCH_ID_ATTRIBUTE ? -1 : 0, input, face_patch);
-    if (source == COMPONENTS) face_patch.clear();  // the core finds the components
+    append_patches(current->cm, source == PATCH_ID_ATTRIBUTE ? -1 : 0, input);
+    if (source == COMPONENTS) input.face_patch.clear();  // the core finds the components
   }
 
   mr::healing::Params p;
@@ -180,7 +185,7 @@ std::map<std::string, QVariant> FilterHealPatchGapsPlugin::applyFilter(
   p.orient_outward = params.getBool("orient_outward");
 
   if (cb) cb(10, "Pairing patch borders");
-  const mr::healing::Result r = mr::bridge::run_core(kFilter, [&] { return mr::healing::heal(input, face_patch, p); });
+  const mr::healing::Result r = mr::bridge::run_core(kFilter, [&] { return mr::healing::heal(std::move(input.points), std::move(input.faces), std::move(input.face_patch), p); });
   if (cb) cb(90, "Writing the healed layer");
   MeshModel* layer = md.addNewMesh("", label + " healed", true);
   write_layer(r, *layer, params.getBool("color_groups"));
