@@ -231,3 +231,23 @@ def test_bad_parameters_are_rejected(kw, match):
     with raises_on(ms, match):
         heal(ms, **kw)
     assert ms.mesh_number() == 1
+
+
+# ---- robustness: every shared triangle mesh ------------------------------------------
+
+ALL_SHARED = ["cad/blade.off", "cad/fandisk.obj", "cad/joint.off", "cad/part.off",
+              "organic/rocker-arm.obj", "organic/stanford-bunny.obj", "multicomponent/ballA.off",
+              "multicomponent/box.STL", "multicomponent/rabbit.obj", "quad/spot_control_mesh.obj",
+              "quad/torus_quad.off"]
+
+
+@pytest.mark.parametrize("name", ALL_SHARED)
+def test_every_shared_mesh_heals_without_damage(name):
+    ms = load(name)
+    before = ms.get_topological_measures()
+    diag = ms.current_mesh().bounding_box().diagonal()
+    r = heal(ms, vertex_tolerance=Pct(0.01))
+    assert r["largest_move"] <= 1e-4 * diag
+    assert r["boundary_edges_after"] <= r["boundary_edges_before"]
+    # Healing never adds non-manifold edges.
+    assert r["non_manifold_edges_after"] <= before["non_two_manifold_edges"]
