@@ -254,8 +254,8 @@ QuadMesh subdivide_step(const QuadMesh& mesh, const EdgeList& creases, const Par
   return out;
 }
 
-Result subdivide(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
-                 const EdgeList& marked_creases, const Params& params) {
+Result prepare_level_zero(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
+                          const EdgeList& marked_creases, const Params& params) {
   const double max_w = std::sqrt(5.0) - 1.0;
   if (!(params.w >= 0.0 && params.w <= max_w))
     throw InvalidInput("tension w must lie in [0, sqrt(5)-1 = 1.2361], got " + std::to_string(params.w));
@@ -297,13 +297,19 @@ Result subdivide(const std::vector<Point3>& points, const std::vector<std::vecto
     const Topology topo(cut_along_creases(mesh, {}, params.corner_angle_deg).mesh);
     for (const auto& r : topo.ring) result.extraordinary_vertices += !r.boundary && !r.p.empty() && r.p.size() != 4;
   }
-  for (int level = 0; level < params.iterations; ++level) {
-    EdgeList next;
-    mesh = subdivide_step(mesh, creases, params, &next);
-    creases.swap(next);
-  }
   result.mesh = std::move(mesh);
   result.creases = std::move(creases);
+  return result;
+}
+
+Result subdivide(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
+                 const EdgeList& marked_creases, const Params& params) {
+  Result result = prepare_level_zero(points, polygons, marked_creases, params);
+  for (int level = 0; level < params.iterations; ++level) {
+    EdgeList next;
+    result.mesh = subdivide_step(result.mesh, result.creases, params, &next);
+    result.creases.swap(next);
+  }
   result.levels = params.iterations;
   return result;
 }

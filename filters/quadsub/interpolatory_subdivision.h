@@ -37,8 +37,17 @@ double diagonal_correction_weight(double w);
 
 /// One subdivision step; `face_points_by_direction`, when given, receives for every
 /// face the face point computed across each pair of opposite edges.
+/// The result keeps `mesh.points` as the prefix of its points; quad q of `mesh` becomes
+/// quads 4q+k (k = 0..3) = {c[k], edge point of (c[k], c[k+1]), face point, edge point of
+/// (c[k-1], c[k])}, c = mesh.quads[q]; an edge point is one vertex shared by both faces of its edge.
 QuadMesh subdivide_step(const QuadMesh& mesh, const EdgeList& creases, const Params& params, EdgeList* new_creases,
                         std::vector<std::pair<Point3, Point3>>* face_points_by_direction = nullptr);
+
+/// Level 0 of `subdivide`: validates, splits non-quads into quads and finds the creases
+/// (marked edges plus the crease angle); `levels` is 0 and `mesh` the quads to refine.
+/// \throw as `subdivide`.
+Result prepare_level_zero(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
+                          const EdgeList& marked_creases, const Params& params);
 
 /// Splits non-quads, finds creases (marked edges plus the crease angle), runs the steps.
 /// \throw InvalidInput on bad parameters, empty input or NaN; TopologyError on

@@ -85,10 +85,12 @@ QuadMesh quads_from_polygons(const std::vector<Point3>& points, const std::vecto
   return out;
 }
 
-void quads_to_tri_mesh(const QuadMesh& quads, TriMesh& out) {
+void quads_to_tri_mesh(const QuadMesh& quads, TriMesh& out) { quads_to_tri_mesh(quads, {}, out); }
+
+void quads_to_tri_mesh(const QuadMesh& quads, const std::vector<std::array<int, 3>>& triangles, TriMesh& out) {
   out.Clear();
   vcg::tri::Allocator<TriMesh>::AddVertices(out, quads.points.size());
-  vcg::tri::Allocator<TriMesh>::AddFaces(out, 2 * quads.quads.size());
+  vcg::tri::Allocator<TriMesh>::AddFaces(out, 2 * quads.quads.size() + triangles.size());
   for (size_t i = 0; i < quads.points.size(); ++i) out.vert[i].P() = quads.points[i];
   for (size_t q = 0; q < quads.quads.size(); ++q) {
     const auto& c = quads.quads[q];
@@ -98,6 +100,10 @@ void quads_to_tri_mesh(const QuadMesh& quads, TriMesh& out) {
     t1.V(0) = &out.vert[c[0]]; t1.V(1) = &out.vert[c[2]]; t1.V(2) = &out.vert[c[3]];
     t0.SetF(2);  // c2 -> c0 is the quad's diagonal
     t1.SetF(0);  // c0 -> c2
+  }
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    auto& f = out.face[2 * quads.quads.size() + t];
+    for (int z = 0; z < 3; ++z) f.V(z) = &out.vert[triangles[t][z]];
   }
   out.bbox.SetNull();
   for (const auto& v : out.vert) out.bbox.Add(v.cP());

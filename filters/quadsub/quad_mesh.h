@@ -26,4 +26,8 @@ QuadMesh quads_from_polygons(const std::vector<Point3>& points, const std::vecto
 /// Triangle pairs with faux diagonals, the way MeshLab stores quads.
 void quads_to_tri_mesh(const QuadMesh& quads, TriMesh& out);
 
+/// The same, followed by plain triangles (faces 2 * quads.quads.size() + t), which use
+/// the points of `quads`.
+void quads_to_tri_mesh(const QuadMesh& quads, const std::vector<std::array<int, 3>>& triangles, TriMesh& out);
+
 }  // namespace mr::quadsub

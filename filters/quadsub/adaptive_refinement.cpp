@@ -1,0 +1,287 @@
+#include "quadsub/adaptive_refinement.h"
+
+#include "common/errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+namespace mr::quadsub {
+namespace {
+
+enum State : char { kAbsent = 0, kLeaf = 1, kSplit = 2 };
+
+std::uint64_t edge_key(int a, int b) {
+  auto [lo, hi] = std::minmax(a, b);
+  return (std::uint64_t(std::uint32_t(lo)) << 32) | std::uint32_t(hi);
+}
+
+// One level of the uniform hierarchy. Its quads are all the faces the uniform scheme has
+// at this level; `state` says which of them are faces of the adaptive mesh (leaves), which
+// were split further, and which lie inside a coarser leaf (absent). The points are the
+// uniform scheme's, so a point shared by faces of different levels is one vertex.
+struct Level {
+  QuadMesh mesh;
+  EdgeList creases;
+  std::unordered_map<std::uint64_t, std::array<int, 2>> edge_faces;
+  std::vector<char> state;
+  std::vector<char> marked;  // descends from a selected input polygon
+
+  void index_edges() {
+    edge_faces.reserve(2 * mesh.quads.size());
+    for (int q = 0; q < int(mesh.quads.size()); ++q)
+      for (int s = 0; s < 4; ++s) {
+        auto& f = edge_faces.try_emplace(edge_key(mesh.quads[q][s], mesh.quads[q][(s + 1) % 4]),
+                                         std::array<int, 2>{-1, -1}).first->second;
+        (f[0] < 0 ? f[0] : f[1]) = q;
+      }
+  }
+
+  // The face across side s of quad q, or -1 on a boundary.
+  int across(int q, int s) const {
+    const auto& f = edge_faces.at(edge_key(mesh.quads[q][s], mesh.quads[q][(s + 1) % 4]));
+    return f[0] == q ? f[1] : f[0];
+  }
+};
+
+class Refinement {
+public:
+  Refinement(Result level_zero, std::vector<char> marked, const Params& params, const AdaptiveParams& adaptive,
+             double diagonal)
+      : params_(params), adaptive_(adaptive), diagonal_(diagonal) {
+    Level& base = levels_.emplace_back();
+    base.mesh = std::move(level_zero.mesh);
+    base.creases = std::move(level_zero.creases);
+    base.state.assign(base.mesh.quads.size(), kLeaf);
+    base.marked = std::move(marked);
+    base.index_edges();
+  }
+
+  void run() {
+    for (int l = 0; l < params_.iterations; ++l) {
+      add_level();
+      refined_.push_back(0);
+      std::vector<int> chosen;
+      for (int q = 0; q < int(levels_[l].mesh.quads.size()); ++q)
+        if (levels_[l].state[q] == kLeaf && wants_split(l, q)) chosen.push_back(q);
+      if (chosen.empty()) { refined_.pop_back(); levels_.pop_back(); break; }
+      for (int q : chosen) split(l, q, false);
+      close_faces_split_all_around();
+    }
+  }
+
+  AdaptiveResult output() const {
+    AdaptiveResult r;
+    r.refined_per_level = refined_;
+    r.balance_refinements = balance_refinements_;
+    QuadMesh& out = r.mesh;
+    for (int l = 0; l < int(levels_.size()); ++l) {
+      const Level& lv = levels_[l];
+      for (int q = 0; q < int(lv.mesh.quads.size()); ++q) {
+        if (lv.state[q] != kLeaf) continue;
+        const int faces_before = int(out.quads.size() + r.triangles.size());
+        emit_leaf(l, q, r);
+        const int added = int(out.quads.size() + r.triangles.size()) - faces_before;
+        if (added > 1) r.transition_faces += added;
+        r.levels = std::max(r.levels, l);
+      }
+    }
+    compact_points(r);
+    return r;
+  }
+
+private:
+  void add_level() {
+    const int l = int(levels_.size()) - 1;
+    Level next;
+    next.mesh = subdivide_step(levels_[l].mesh, levels_[l].creases, params_, &next.creases);
+    next.state.assign(next.mesh.quads.size(), kAbsent);
+    next.marked.assign(next.mesh.quads.size(), 0);
+    next.index_edges();
+    levels_.push_back(std::move(next));
+  }
+
+  bool wants_split(int l, int q) const {
+    switch (adaptive_.refine) {
+      case RefineFaces::All: return true;
+      case RefineFaces::Selected: return levels_[l].marked[q] != 0;
+      case RefineFaces::ErrorAbove: {
+        const auto& c = levels_[l].mesh.quads[q];
+        const auto& p = levels_[l].mesh.points;
+        const Point3 bilinear_centre = (p[c[0]] + p[c[1]] + p[c[2]] + p[c[3]]) * 0.25;
+        const QuadMesh& fine = levels_[l + 1].mesh;
+        const Point3& face_point = fine.points[fine.quads[4 * q][2]];
+        return (face_point - bilinear_centre).Norm() > adaptive_.error_threshold * diagonal_;
+      }
+    }
+    return false;
+  }
+
+  // The adaptive-mesh face covering quad g of level l: g itself or its nearest present ancestor.
+  std::pair<int, int> covering_face(int l, int g) const {
+    while (levels_[l].state[g] == kAbsent) { g /= 4; --l; }
+    return {l, g};
+  }
+
+  // Splits leaf q of level l into its four children, after splitting every coarser edge
+  // neighbour (recursively), so that faces sharing an edge never differ by two levels.
+  void split(int l, int q, bool for_balance) {
+    if (levels_[l].state[q] != kLeaf) return;
+    for (int s = 0; s < 4; ++s) {
+      const int g = levels_[l].across(q, s);
+      if (g < 0) continue;
+      while (true) {
+        const auto [lg, cg] = covering_face(l, g);
+        if (lg >= l) break;
+        split(lg, cg, true);  // the coarser neighbour first; it may itself need a ripple
+      }
+    }
+    Level& lv = levels_[l];
+    Level& fine = levels_[l + 1];
+    lv.state[q] = kSplit;
+    for (int k = 0; k < 4; ++k) {
+      fine.state[4 * q + k] = kLeaf;
+      fine.marked[4 * q + k] = for_balance ? 0 : lv.marked[q];
+    }
+    ++refined_[l];
+    balance_refinements_ += for_balance;
+  }
+
+  int hanging_mask(int l, int q) const {
+    int mask = 0;
+    for (int s = 0; s < 4; ++s) {
+      const int g = levels_[l].across(q, s);
+      if (g >= 0 && levels_[l].state[g] == kSplit) mask |= 1 << s;
+    }
+    return mask;
+  }
+
+  // A leaf whose four neighbours are all split is split as well: its "transition" would
+  // be its four children anyway, and this keeps their level right.
+  void close_faces_split_all_around() {
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (int l = 0; l + 1 < int(levels_.size()); ++l)
+        for (int q = 0; q < int(levels_[l].mesh.quads.size()); ++q)
+          if (levels_[l].state[q] == kLeaf && hanging_mask(l, q) == 15) {
+            split(l, q, true);
+            changed = true;
+          }
+    }
+  }
+
+  // The leaf as one quad, or closed around its hanging edge points by a template:
+  // one hanging side -> 2 quads + 1 triangle; two adjacent -> 3 quads; two opposite -> 2 quads;
+  // three -> 3 quads + 1 triangle. The templates use the face's own face point, a point of
+  // the uniform scheme, so they are on the same surface as the refined neighbours.
+  void emit_leaf(int l, int q, AdaptiveResult& r) const {
+    const auto c = levels_[l].mesh.quads[q];
+    const int mask = hanging_mask(l, q);
+    auto quad = [&](int a, int b, int cc, int d) { r.mesh.quads.push_back({a, b, cc, d}); r.quad_level.push_back(l); };
+    auto tri = [&](int a, int b, int cc) { r.triangles.push_back({a, b, cc}); r.triangle_level.push_back(l); };
+    if (mask == 0) { quad(c[0], c[1], c[2], c[3]); return; }
+    const auto& children = levels_[l + 1].mesh.quads;
+    const int f = children[4 * q][2];
+    auto C = [&](int s) { return c[(s % 4 + 4) % 4]; };
+    auto M = [&](int s) { return children[4 * q + (s % 4 + 4) % 4][1]; };  // edge point of side s
+    auto has = [&](int s) { return (mask >> ((s % 4 + 4) % 4)) & 1; };
+    const int count = has(0) + has(1) + has(2) + has(3);
+    if (count == 4) {
+      for (int k = 0; k < 4; ++k) quad(C(k), M(k), f, M(k - 1));
+      return;
+    }
+    // s: the first hanging side of the run of hanging sides (the one after a free side)
+    int s = 0;
+    while (!(has(s) && !has(s - 1))) ++s;
+    if (count == 1) {
+      quad(C(s), M(s), f, C(s + 3));
+      quad(M(s), C(s + 1), C(s + 2), f);
+      tri(f, C(s + 2), C(s + 3));
+    } else if (count == 2 && has(s + 1)) {
+      quad(M(s), C(s + 1), M(s + 1), f);
+      quad(C(s), M(s), f, C(s + 3));
+      quad(f, M(s + 1), C(s + 2), C(s + 3));
+    } else if (count == 2) {  // opposite sides s and s + 2
+      quad(C(s), M(s), M(s + 2), C(s + 3));
+      quad(M(s), C(s + 1), C(s + 2), M(s + 2));
+    } else {  // sides s, s + 1, s + 2
+      quad(M(s), C(s + 1), M(s + 1), f);
+      quad(f, M(s + 1), C(s + 2), M(s + 2));
+      quad(C(s), M(s), f, C(s + 3));
+      tri(f, M(s + 2), C(s + 3));
+    }
+  }
+
+  // Keeps the input's points (and the level-0 split points) at their indices, drops the
+  // uniform scheme's points no face uses.
+  void compact_points(AdaptiveResult& r) const {
+    const auto& all = levels_.back().mesh.points;
+    const int kept = int(levels_.front().mesh.points.size());
+    std::vector<int> index(all.size(), -1);
+    for (const auto& q : r.mesh.quads)
+      for (int v : q) index[v] = 0;
+    for (const auto& t : r.triangles)
+      for (int v : t) index[v] = 0;
+    r.mesh.points.clear();
+    for (int v = 0; v < int(all.size()); ++v)
+      if (v < kept || index[v] == 0) {
+        index[v] = int(r.mesh.points.size());
+        r.mesh.points.push_back(all[v]);
+      }
+    for (auto& q : r.mesh.quads)
+      for (int& v : q) v = index[v];
+    for (auto& t : r.triangles)
+      for (int& v : t) v = index[v];
+  }
+
+  const Params& params_;
+  const AdaptiveParams& adaptive_;
+  const double diagonal_;
+  std::vector<Level> levels_;
+  std::vector<int> refined_;
+  int balance_refinements_ = 0;
+};
+
+}  // namespace
+
+AdaptiveResult subdivide_adaptive(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
+                                  const EdgeList& marked_creases, const std::vector<char>& selected_polygons,
+                                  const Params& params, const AdaptiveParams& adaptive) {
+  if (adaptive.refine == RefineFaces::ErrorAbove && !(adaptive.error_threshold > 0 && std::isfinite(adaptive.error_threshold)))
+    throw InvalidInput("error_threshold must be > 0, got " + std::to_string(adaptive.error_threshold));
+  Result zero = prepare_level_zero(points, polygons, marked_creases, params);
+  std::vector<char> marked;
+  if (adaptive.refine == RefineFaces::Selected) {
+    if (selected_polygons.size() != polygons.size())
+      throw InvalidInput("the selection has " + std::to_string(selected_polygons.size()) + " entries for " +
+                         std::to_string(polygons.size()) + " polygons");
+    if (std::find(selected_polygons.begin(), selected_polygons.end(), 1) == selected_polygons.end())
+      throw InvalidInput("no face is selected: select the faces to refine, or refine all faces or by error");
+    // quads_from_polygons keeps a quad as one quad and splits an n-gon into n quads, in order
+    for (size_t i = 0; i < polygons.size(); ++i)
+      marked.insert(marked.end(), polygons[i].size() == 4 ? 1 : polygons[i].size(), selected_polygons[i]);
+  } else {
+    marked.assign(zero.mesh.quads.size(), 0);
+  }
+  Box3 box;
+  for (const auto& p : points) box.Add(p);
+
+  AdaptiveResult r;
+  r.vertices_in = zero.vertices_in;
+  r.faces_in = zero.faces_in;
+  r.extraordinary_vertices = zero.extraordinary_vertices;
+  r.crease_edges_in = zero.crease_edges_in;
+  Refinement refinement(std::move(zero), std::move(marked), params, adaptive, box.Diag());
+  refinement.run();
+  AdaptiveResult out = refinement.output();
+  out.vertices_in = r.vertices_in;
+  out.faces_in = r.faces_in;
+  out.extraordinary_vertices = r.extraordinary_vertices;
+  out.crease_edges_in = r.crease_edges_in;
+  return out;
+}
+
+}  // namespace mr::quadsub
