@@ -7,7 +7,7 @@
 
 namespace mr::quadsub {
 
-std::vector<std::vector<int>> polygons_from_faux_edges(const TriMesh& mesh) {
+std::vector<std::vector<int>> polygons_from_faux_edges(const TriMesh& mesh, std::vector<int>* polygon_of_face) {
   const int nf = int(mesh.face.size());
   const EdgeTable edges(mesh);
   auto vid = [&](int f, int z) { return int(vcg::tri::Index(mesh, mesh.face[f].cV(z))); };
@@ -53,6 +53,7 @@ std::vector<std::vector<int>> polygons_from_faux_edges(const TriMesh& mesh) {
       throw InvalidInput("a polygon (faces joined by faux edges) has holes: clear its faux edges");
     polygons.push_back(std::move(loop));
   }
+  if (polygon_of_face) *polygon_of_face = std::move(region);
   return polygons;
 }
 

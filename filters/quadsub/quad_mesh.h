@@ -16,8 +16,9 @@ struct QuadMesh {
 };
 
 /// Polygons of a triangle mesh: faces joined through faux edges (IsF) form one polygon.
+/// `polygon_of_face`, when given, receives the polygon of each triangle.
 /// \throw InvalidInput when a faux-edge region is not a simple polygon.
-std::vector<std::vector<int>> polygons_from_faux_edges(const TriMesh& mesh);
+std::vector<std::vector<int>> polygons_from_faux_edges(const TriMesh& mesh, std::vector<int>* polygon_of_face = nullptr);
 
 /// Quads of a polygon mesh: quads are kept; every other polygon is split into quads
 /// around its centroid through its edge midpoints (shared midpoints stay shared).
