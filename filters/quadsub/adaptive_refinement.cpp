@@ -269,18 +269,16 @@ AdaptiveResult subdivide_adaptive(const std::vector<Point3>& points, const std::
   Box3 box;
   for (const auto& p : points) box.Add(p);
 
-  AdaptiveResult r;
-  r.vertices_in = zero.vertices_in;
-  r.faces_in = zero.faces_in;
-  r.extraordinary_vertices = zero.extraordinary_vertices;
-  r.crease_edges_in = zero.crease_edges_in;
+  const int vertices_in = zero.vertices_in, faces_in = zero.faces_in;
+  const int extraordinary = zero.extraordinary_vertices, crease_edges = zero.crease_edges_in, cusps = zero.cusps;
   Refinement refinement(std::move(zero), std::move(marked), params, adaptive, box.Diag());
   refinement.run();
   AdaptiveResult out = refinement.output();
-  out.vertices_in = r.vertices_in;
-  out.faces_in = r.faces_in;
-  out.extraordinary_vertices = r.extraordinary_vertices;
-  out.crease_edges_in = r.crease_edges_in;
+  out.vertices_in = vertices_in;
+  out.faces_in = faces_in;
+  out.extraordinary_vertices = extraordinary;
+  out.crease_edges_in = crease_edges;
+  out.cusps = cusps;
   return out;
 }
 

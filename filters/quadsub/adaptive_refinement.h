@@ -32,6 +32,7 @@ struct AdaptiveResult {
   int vertices_in = 0, faces_in = 0;
   int extraordinary_vertices = 0;
   int crease_edges_in = 0;
+  int cusps = 0;
   int levels = 0;                             ///< highest level reached
   std::vector<int> refined_per_level;         ///< faces split at level l (0 = input faces)
   int balance_refinements = 0;                ///< of those, split only to keep the mesh balanced or closed

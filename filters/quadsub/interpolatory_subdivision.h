@@ -19,6 +19,11 @@ struct Params {
   double w = 1.0;                   ///< tension, [0, sqrt(5)-1]: 1 = cubic precision, 0 = midpoints
   double corner_angle_deg = 60.0;   ///< a boundary or crease turning by more than this is a corner
   double crease_angle_deg = 0.0;    ///< edges whose faces meet at more than this are creases (0 = off)
+  /// Input vertices where the surface comes to a point (the tip of a cone): every edge
+  /// curve through a cusp ends there along its own edge (the point beyond the cusp is the
+  /// reflection 2c - b of the neighbour), as if a hole had shrunk to the point, so there is
+  /// no tangent plane. Indices stay valid at every level (old vertices keep their index).
+  std::vector<int> cusp_vertices;
 };
 
 struct Result {
@@ -27,6 +32,7 @@ struct Result {
   int vertices_in = 0, faces_in = 0;
   int extraordinary_vertices = 0;   ///< interior vertices of valence != 4 in the input quad mesh
   int crease_edges_in = 0;
+  int cusps = 0;
   int levels = 0;
 };
 

@@ -32,7 +32,7 @@ QString FilterInterpolatoryQuadPlugin::filterInfo(ActionIDType) const {
          "(e = (8+w)/16 (p0+q0) - w/16 (p*+q*)); face points apply the same rule to the new edge points; "
          "at extraordinary vertices a virtual point replaces the missing neighbour. Boundaries use the "
          "curve rule on boundary vertices only, with reflection at corners; selected edges, or edges "
-         "sharper than the crease angle, stay sharp. Adaptive refinement splits only the selected faces, or "
+         "sharper than the crease angle, stay sharp; selected vertices can be cusps. Adaptive refinement splits only the selected faces, or "
          "the faces whose face point lies farther than a threshold from their bilinear centre; faces sharing "
          "an edge differ by at most one level and hanging points are closed by transition quads and "
          "triangles, so the result has no cracks. The result is a new layer of quads (faux diagonals), plus "
@@ -69,6 +69,9 @@ RichParameterList FilterInterpolatoryQuadPlugin::initParameterList(const QAction
   list.addParam(RichFloat("corner_angle", d.corner_angle_deg, "Corner angle (deg)",
                           "A boundary or crease that turns by more than this angle, in degrees, is a corner "
                           "(reflection rule)."));
+  list.addParam(RichBool("use_selected_vertices_as_cusps", false, "Selected vertices are cusps",
+                         "The surface comes to a point at each selected vertex (the tip of a cone, a hole shrunk "
+                         "to a point): every edge through it keeps its own direction there."));
   list.addParam(RichEnum("adaptive", 0, {"All faces", "Selected faces", "Faces above error threshold"},
                          "Refine",
                          "Which faces each step splits: all (uniform); the selected faces (a polygon is selected "
@@ -96,6 +99,7 @@ std::map<std::string, QVariant> FilterInterpolatoryQuadPlugin::applyFilter(
   p.crease_angle_deg = params.getFloat("crease_angle");
   p.corner_angle_deg = params.getFloat("corner_angle");
   const bool use_selection = params.getBool("use_selected_edges_as_creases");
+  const bool use_cusps = params.getBool("use_selected_vertices_as_cusps");
   const int refine = params.getEnum("adaptive");
   if (refine < 0 || refine > 2)
     throw MLException("meshing_surface_subdivision_interpolatory_quad: adaptive must be 0 (all faces), "
@@ -118,6 +122,9 @@ std::map<std::string, QVariant> FilterInterpolatoryQuadPlugin::applyFilter(
     std::vector<char> selected(polygons.size(), 0);
     for (size_t f = 0; f < copy.mesh.face.size(); ++f)
       if (copy.mesh.face[f].IsS()) selected[polygon_of_face[f]] = 1;
+    if (use_cusps)
+      for (size_t v = 0; v < copy.mesh.vert.size(); ++v)
+        if (copy.mesh.vert[v].IsS()) p.cusp_vertices.push_back(int(v));
     mr::quadsub::EdgeList creases;
     if (use_selection)
       for (const auto& f : copy.mesh.face)
@@ -134,6 +141,7 @@ std::map<std::string, QVariant> FilterInterpolatoryQuadPlugin::applyFilter(
     all.faces_in = u.faces_in;
     all.extraordinary_vertices = u.extraordinary_vertices;
     all.crease_edges_in = u.crease_edges_in;
+    all.cusps = u.cusps;
     all.levels = u.levels;
     const int quads_in = int(all.mesh.quads.size() >> (2 * u.levels));  // after splitting non-quads
     for (int l = 0; l < u.levels; ++l) all.refined_per_level.push_back(quads_in << (2 * l));
@@ -163,6 +171,7 @@ std::map<std::string, QVariant> FilterInterpolatoryQuadPlugin::applyFilter(
       {"triangles_out", QVariant(int(r.triangles.size()))},
       {"extraordinary_vertices", QVariant(r.extraordinary_vertices)},
       {"crease_edges", QVariant(r.crease_edges_in)},
+      {"cusps", QVariant(r.cusps)},
       {"levels", QVariant(r.levels)},
       {"balance_refinements", QVariant(r.balance_refinements)},
       {"transition_faces", QVariant(r.transition_faces)},
