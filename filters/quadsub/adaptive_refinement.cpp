@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -19,16 +20,20 @@ std::uint64_t edge_key(int a, int b) {
   return (std::uint64_t(std::uint32_t(lo)) << 32) | std::uint32_t(hi);
 }
 
-// One level of the uniform hierarchy. Its quads are all the faces the uniform scheme has
-// at this level; `state` says which of them are faces of the adaptive mesh (leaves), which
-// were split further, and which lie inside a coarser leaf (absent). The points are the
+// One level of the hierarchy: the faces of the uniform scheme at this level that were
+// computed (all of them at levels 0 and 1; below, the descendants of the input faces near
+// the refinement). `state` says which of them are faces of the adaptive mesh (leaves),
+// which were split further, and which lie inside a coarser leaf (absent). The points are the
 // uniform scheme's, so a point shared by faces of different levels is one vertex.
 struct Level {
   QuadMesh mesh;
   EdgeList creases;
   std::unordered_map<std::uint64_t, std::array<int, 2>> edge_faces;
   std::vector<char> state;
-  std::vector<char> marked;  // descends from a selected input polygon
+  std::vector<char> marked;      // descends from a selected input polygon
+  std::vector<int> parent;       // face of the previous level (-1 at level 0)
+  std::vector<int> origin;       // input (level-0) quad it descends from
+  std::vector<int> first_child;  // its children are first_child + 0..3 of the next level; -1: not computed
 
   void index_edges() {
     edge_faces.reserve(2 * mesh.quads.size());
@@ -40,36 +45,70 @@ struct Level {
       }
   }
 
-  // The face across side s of quad q, or -1 on a boundary.
+  // The face across side s of quad q, or -1 on a boundary (or beyond the computed region).
   int across(int q, int s) const {
     const auto& f = edge_faces.at(edge_key(mesh.quads[q][s], mesh.quads[q][(s + 1) % 4]));
     return f[0] == q ? f[1] : f[0];
   }
 };
 
+// Thrown when a face farther from the seeds than the computed region allows must be split.
+struct NeedsWiderRegion {};
+
+// Rings of input quads (joined through shared vertices) from the seed quads; -1 if unreachable.
+std::vector<int> ring_distance(const QuadMesh& m, const std::vector<char>& seed) {
+  std::vector<std::vector<int>> faces_at(m.points.size());
+  for (int q = 0; q < int(m.quads.size()); ++q)
+    for (int v : m.quads[q]) faces_at[v].push_back(q);
+  std::vector<int> dist(m.quads.size(), -1), front;
+  for (int q = 0; q < int(m.quads.size()); ++q)
+    if (seed[q]) { dist[q] = 0; front.push_back(q); }
+  for (size_t i = 0; i < front.size(); ++i)
+    for (int v : m.quads[front[i]])
+      for (int g : faces_at[v])
+        if (dist[g] < 0) { dist[g] = dist[front[i]] + 1; front.push_back(g); }
+  return dist;
+}
+
 class Refinement {
 public:
   Refinement(Result level_zero, std::vector<char> marked, const Params& params, const AdaptiveParams& adaptive,
              double diagonal)
-      : params_(params), adaptive_(adaptive), diagonal_(diagonal) {
+      : params_(params), adaptive_(adaptive), diagonal_(diagonal), marked_(std::move(marked)) {
     Level& base = levels_.emplace_back();
+    const int n = int(level_zero.mesh.quads.size());
     base.mesh = std::move(level_zero.mesh);
     base.creases = std::move(level_zero.creases);
-    base.state.assign(base.mesh.quads.size(), kLeaf);
-    base.marked = std::move(marked);
+    base.parent.assign(n, -1);
+    base.origin.resize(n);
+    std::iota(base.origin.begin(), base.origin.end(), 0);
     base.index_edges();
   }
 
+  // Refines inside a region around the seeds (the input faces refined first); when a
+  // ripple or a later level reaches past it, starts again with a wider region.
   void run() {
-    for (int l = 0; l < params_.iterations; ++l) {
-      add_level();
-      refined_.push_back(0);
-      std::vector<int> chosen;
-      for (int q = 0; q < int(levels_[l].mesh.quads.size()); ++q)
-        if (levels_[l].state[q] == kLeaf && wants_split(l, q)) chosen.push_back(q);
-      if (chosen.empty()) { refined_.pop_back(); levels_.pop_back(); break; }
-      for (int q : chosen) split(l, q, false);
-      close_faces_split_all_around();
+    reset();
+    add_level(0);  // level 1 in full: the error of every input face needs its face point
+    std::vector<char> seed(levels_[0].mesh.quads.size(), 0);
+    for (int q = 0; q < int(seed.size()); ++q) seed[q] = wants_split(0, q);
+    dist0_ = ring_distance(levels_[0].mesh, seed);
+    int farthest = 0;
+    for (int d : dist0_) farthest = std::max(farthest, d);
+    const bool unreachable = std::find(dist0_.begin(), dist0_.end(), -1) != dist0_.end();
+    for (int allowed = adaptive_.initial_region_rings;; allowed = 2 * allowed + 2) {
+      // Children of a face at level l are exact when its 2-ring at level l is: that ring
+      // reaches one input quad farther, so each level below 1 costs one ring of margin.
+      allowed_ = allowed;
+      region_ = allowed + params_.iterations + 1;
+      restricted_ = adaptive_.refine != RefineFaces::All && (unreachable || region_ < farthest);
+      try {
+        refine_levels();
+        return;
+      } catch (const NeedsWiderRegion&) {
+        ++restarts_;
+        reset();
+      }
     }
   }
 
@@ -77,6 +116,8 @@ public:
     AdaptiveResult r;
     r.refined_per_level = refined_;
     r.balance_refinements = balance_refinements_;
+    r.region_restarts = restarts_;
+    for (const Level& lv : levels_) r.hierarchy_faces += int(lv.mesh.quads.size());
     QuadMesh& out = r.mesh;
     for (int l = 0; l < int(levels_.size()); ++l) {
       const Level& lv = levels_[l];
@@ -94,14 +135,69 @@ public:
   }
 
 private:
-  void add_level() {
-    const int l = int(levels_.size()) - 1;
-    Level next;
-    next.mesh = subdivide_step(levels_[l].mesh, levels_[l].creases, params_, &next.creases);
-    next.state.assign(next.mesh.quads.size(), kAbsent);
-    next.marked.assign(next.mesh.quads.size(), 0);
-    next.index_edges();
-    levels_.push_back(std::move(next));
+  // Back to the input faces as leaves; levels 0 and 1 are kept, deeper ones recomputed.
+  void reset() {
+    if (levels_.size() > 2) levels_.resize(2);
+    levels_[0].state.assign(levels_[0].mesh.quads.size(), kLeaf);
+    levels_[0].marked = marked_;
+    if (levels_.size() > 1) {
+      levels_[1].state.assign(levels_[1].mesh.quads.size(), kAbsent);
+      levels_[1].marked.assign(levels_[1].mesh.quads.size(), 0);
+      levels_[1].first_child.assign(levels_[1].mesh.quads.size(), -1);
+    }
+    refined_.clear();
+    balance_refinements_ = 0;
+  }
+
+  void refine_levels() {
+    for (int l = 0; l < params_.iterations; ++l) {
+      if (int(levels_.size()) < l + 2) add_level(l);
+      refined_.push_back(0);
+      std::vector<int> chosen;
+      for (int q = 0; q < int(levels_[l].mesh.quads.size()); ++q)
+        if (levels_[l].state[q] == kLeaf && wants_split(l, q)) chosen.push_back(q);
+      if (chosen.empty()) { refined_.pop_back(); levels_.resize(l + 1); break; }
+      for (int q : chosen) split(l, q, false);
+      close_faces_split_all_around();
+    }
+  }
+
+  // Level l + 1 from level l: one uniform step on the faces of level l inside the region.
+  void add_level(int l) {
+    Level& coarse = levels_[l];
+    QuadMesh part;
+    part.points = coarse.mesh.points;  // keeps every index valid at every level
+    std::vector<int> source;
+    for (int q = 0; q < int(coarse.mesh.quads.size()); ++q)
+      if (l == 0 || !restricted_ || (dist0_[coarse.origin[q]] >= 0 && dist0_[coarse.origin[q]] <= region_)) {
+        part.quads.push_back(coarse.mesh.quads[q]);
+        source.push_back(q);
+      }
+    Level fine;
+    fine.mesh = subdivide_step(part, coarse.creases, params_, &fine.creases);
+    const int n = int(fine.mesh.quads.size());
+    fine.state.assign(n, kAbsent);
+    fine.marked.assign(n, 0);
+    fine.parent.resize(n);
+    fine.origin.resize(n);
+    fine.first_child.assign(n, -1);
+    coarse.first_child.assign(coarse.mesh.quads.size(), -1);
+    for (int j = 0; j < int(source.size()); ++j) {
+      coarse.first_child[source[j]] = 4 * j;
+      for (int k = 0; k < 4; ++k) {
+        fine.parent[4 * j + k] = source[j];
+        fine.origin[4 * j + k] = coarse.origin[source[j]];
+      }
+    }
+    fine.index_edges();
+    levels_.push_back(std::move(fine));
+  }
+
+  // The children of q, computed and exact; throws when q lies beyond the region.
+  int children_of(int l, int q) const {
+    const int first = levels_[l].first_child[q];
+    if (first < 0) throw NeedsWiderRegion{};
+    return first;
   }
 
   bool wants_split(int l, int q) const {
@@ -113,7 +209,7 @@ private:
         const auto& p = levels_[l].mesh.points;
         const Point3 bilinear_centre = (p[c[0]] + p[c[1]] + p[c[2]] + p[c[3]]) * 0.25;
         const QuadMesh& fine = levels_[l + 1].mesh;
-        const Point3& face_point = fine.points[fine.quads[4 * q][2]];
+        const Point3& face_point = fine.points[fine.quads[children_of(l, q)][2]];
         return (face_point - bilinear_centre).Norm() > adaptive_.error_threshold * diagonal_;
       }
     }
@@ -122,7 +218,7 @@ private:
 
   // The adaptive-mesh face covering quad g of level l: g itself or its nearest present ancestor.
   std::pair<int, int> covering_face(int l, int g) const {
-    while (levels_[l].state[g] == kAbsent) { g /= 4; --l; }
+    while (levels_[l].state[g] == kAbsent) { g = levels_[l].parent[g]; --l; }
     return {l, g};
   }
 
@@ -130,6 +226,7 @@ private:
   // neighbour (recursively), so that faces sharing an edge never differ by two levels.
   void split(int l, int q, bool for_balance) {
     if (levels_[l].state[q] != kLeaf) return;
+    if (restricted_ && dist0_[levels_[l].origin[q]] > allowed_) throw NeedsWiderRegion{};
     for (int s = 0; s < 4; ++s) {
       const int g = levels_[l].across(q, s);
       if (g < 0) continue;
@@ -139,12 +236,13 @@ private:
         split(lg, cg, true);  // the coarser neighbour first; it may itself need a ripple
       }
     }
+    const int first = children_of(l, q);
     Level& lv = levels_[l];
     Level& fine = levels_[l + 1];
     lv.state[q] = kSplit;
     for (int k = 0; k < 4; ++k) {
-      fine.state[4 * q + k] = kLeaf;
-      fine.marked[4 * q + k] = for_balance ? 0 : lv.marked[q];
+      fine.state[first + k] = kLeaf;
+      fine.marked[first + k] = for_balance ? 0 : lv.marked[q];
     }
     ++refined_[l];
     balance_refinements_ += for_balance;
@@ -184,9 +282,10 @@ private:
     auto tri = [&](int a, int b, int cc) { r.triangles.push_back({a, b, cc}); r.triangle_level.push_back(l); };
     if (mask == 0) { quad(c[0], c[1], c[2], c[3]); return; }
     const auto& children = levels_[l + 1].mesh.quads;
-    const int f = children[4 * q][2];
+    const int first = levels_[l].first_child[q];  // computed: a neighbour was split
+    const int f = children[first][2];
     auto C = [&](int s) { return c[(s % 4 + 4) % 4]; };
-    auto M = [&](int s) { return children[4 * q + (s % 4 + 4) % 4][1]; };  // edge point of side s
+    auto M = [&](int s) { return children[first + (s % 4 + 4) % 4][1]; };  // edge point of side s
     auto has = [&](int s) { return (mask >> ((s % 4 + 4) % 4)) & 1; };
     const int count = has(0) + has(1) + has(2) + has(3);
     if (count == 4) {
@@ -240,6 +339,12 @@ private:
   const Params& params_;
   const AdaptiveParams& adaptive_;
   const double diagonal_;
+  const std::vector<char> marked_;
+  std::vector<int> dist0_;    // rings of input quads from the seeds
+  int allowed_ = 0;           // faces split must descend from input quads this close to the seeds
+  int region_ = 0;            // levels below 1 are computed for input quads this close
+  bool restricted_ = false;
+  int restarts_ = 0;
   std::vector<Level> levels_;
   std::vector<int> refined_;
   int balance_refinements_ = 0;
@@ -252,6 +357,8 @@ AdaptiveResult subdivide_adaptive(const std::vector<Point3>& points, const std::
                                   const Params& params, const AdaptiveParams& adaptive) {
   if (adaptive.refine == RefineFaces::ErrorAbove && !(adaptive.error_threshold > 0 && std::isfinite(adaptive.error_threshold)))
     throw InvalidInput("error_threshold must be > 0, got " + std::to_string(adaptive.error_threshold));
+  if (adaptive.initial_region_rings < 0)
+    throw InvalidInput("initial_region_rings must be >= 0, got " + std::to_string(adaptive.initial_region_rings));
   Result zero = prepare_level_zero(points, polygons, marked_creases, params);
   std::vector<char> marked;
   if (adaptive.refine == RefineFaces::Selected) {

@@ -22,6 +22,10 @@ struct AdaptiveParams {
   /// With ErrorAbove: a face is refined when |face point - mean of its corners| exceeds this
   /// fraction of the input's bounding-box diagonal. > 0.
   double error_threshold = 0.001;
+  /// Work only, not the result: levels below 1 are first computed for the input quads within
+  /// this many rings (plus the stencil margin) of the first refined faces, and the region is
+  /// widened (2r + 2) whenever a face beyond it must be split. >= 0.
+  int initial_region_rings = 2;
 };
 
 struct AdaptiveResult {
@@ -37,10 +41,13 @@ struct AdaptiveResult {
   std::vector<int> refined_per_level;         ///< faces split at level l (0 = input faces)
   int balance_refinements = 0;                ///< of those, split only to keep the mesh balanced or closed
   int transition_faces = 0;                   ///< quads and triangles closing hanging edge points
+  int hierarchy_faces = 0;                    ///< quads computed over all levels (work done)
+  int region_restarts = 0;                    ///< times the computed region had to be widened
 };
 
 /// Refines `params.iterations` levels; at each level the faces of the previous level that
-/// pass the criterion are split into four. A face is split only after its coarser edge
+/// pass the criterion are split into four. Level 1 is computed in full; deeper levels only
+/// near the refined faces, wide enough that every stencil is the uniform one. A face is split only after its coarser edge
 /// neighbours (balance), and an unsplit face whose four neighbours are split is split too.
 /// `selected_polygons[i]` marks polygon i (read with RefineFaces::Selected; a split non-quad
 /// polygon passes the mark to all its quads).

@@ -35,11 +35,11 @@ QuadMesh grid(int n, F f) {
 double flat(double, double) { return 0.0; }
 
 // A closed net with eight valence-3 vertices: the unit cube, twice refined uniformly (96 quads).
-QuadMesh rounded_cube() {
+QuadMesh rounded_cube(int levels = 2) {
   std::vector<Point3> pts = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   Polygons faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
   Params p;
-  p.iterations = 2;
+  p.iterations = levels;
   return subdivide(pts, faces, {}, p).mesh;
 }
 
@@ -263,6 +263,64 @@ TEST(QuadSubAdaptive, ErrorThresholdRefinesWhereCurvatureIsHigh) {
   EXPECT_GT(finer.mesh.quads.size(), r.mesh.quads.size());
 }
 
+// Every point of `r` is, bit for bit, a point of the uniform scheme `u`.
+bool on_uniform_surface(const AdaptiveResult& r, const Result& u) {
+  std::set<std::array<double, 3>> points;
+  for (const auto& q : u.mesh.points) points.insert({q[0], q[1], q[2]});
+  for (const auto& q : r.mesh.points)
+    if (!points.count({q[0], q[1], q[2]})) return false;
+  return true;
+}
+
+TEST(QuadSubAdaptive, OnlyTheRegionNearTheRefinementIsComputed) {
+  QuadMesh m = rounded_cube(4);  // 1536 quads
+  const std::vector<char> sel = select(m, [](const Point3& c) { return c[0] > 0.9 && c[1] > 0.9 && c[2] > 0.5; });
+  Params p;
+  p.iterations = 3;
+  AdaptiveResult r = subdivide_adaptive(m.points, polygons(m), {}, sel, p, AdaptiveParams{});
+  Result uniform = subdivide(m.points, polygons(m), {}, p);
+  EXPECT_TRUE(on_uniform_surface(r, uniform));
+  EXPECT_EQ(max_level_jump(faces_of(r)), 1);
+  EXPECT_EQ(r.levels, 3);
+  EXPECT_EQ(r.region_restarts, 0);
+  // levels 0 and 1 in full, deeper levels only near the selection
+  const int uniform_work = 1536 * (1 + 4 + 16 + 64);
+  EXPECT_LT(r.hierarchy_faces, uniform_work / 3);  // measured 32800 of 130560
+}
+
+bool same_result(const AdaptiveResult& a, const AdaptiveResult& b) {
+  return a.mesh.points == b.mesh.points && a.mesh.quads == b.mesh.quads && a.triangles == b.triangles &&
+         a.quad_level == b.quad_level && a.triangle_level == b.triangle_level;
+}
+
+TEST(QuadSubAdaptive, WideningTheRegionDoesNotChangeTheResult) {
+  auto bump = [](double x, double y) { return 0.2 * std::exp(-((x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5)) / 0.02); };
+  QuadMesh m = grid(24, bump);
+  Params p;
+  p.iterations = 3;
+  AdaptiveParams by_error;
+  by_error.refine = RefineFaces::ErrorAbove;
+  by_error.error_threshold = 0.0002;
+  AdaptiveResult wide = subdivide_adaptive(m.points, polygons(m), {}, {}, p, by_error);
+  by_error.initial_region_rings = 0;  // the ripple reaches past it: starts again wider
+  AdaptiveResult narrow = subdivide_adaptive(m.points, polygons(m), {}, {}, p, by_error);
+  EXPECT_GT(narrow.region_restarts, 0);
+  EXPECT_TRUE(same_result(wide, narrow));
+  Result uniform = subdivide(m.points, polygons(m), {}, p);
+  EXPECT_TRUE(on_uniform_surface(narrow, uniform));
+  EXPECT_EQ(narrow.levels, 3);
+  EXPECT_LT(narrow.mesh.quads.size(), uniform.mesh.quads.size() / 2);
+  // the same for a selection
+  QuadMesh c = rounded_cube(3);
+  const std::vector<char> sel = select(c, [](const Point3& q) { return q[0] > 0.8 && q[1] > 0.5; });
+  AdaptiveParams selected, tight;
+  tight.initial_region_rings = 0;
+  AdaptiveResult a = subdivide_adaptive(c.points, polygons(c), {}, sel, p, selected);
+  AdaptiveResult b = subdivide_adaptive(c.points, polygons(c), {}, sel, p, tight);
+  EXPECT_GT(b.region_restarts, 0);
+  EXPECT_TRUE(same_result(a, b));
+}
+
 TEST(QuadSubAdaptive, BadAdaptiveInputIsRejected) {
   QuadMesh m = grid(3, flat);
   Params p;
@@ -273,6 +331,9 @@ TEST(QuadSubAdaptive, BadAdaptiveInputIsRejected) {
   by_error.refine = RefineFaces::ErrorAbove;
   by_error.error_threshold = 0;
   EXPECT_THROW(subdivide_adaptive(m.points, polygons(m), {}, {}, p, by_error), InvalidInput);
+  AdaptiveParams bad_region;
+  bad_region.initial_region_rings = -1;
+  EXPECT_THROW(subdivide_adaptive(m.points, polygons(m), {}, {1, 0, 0, 0, 0, 0, 0, 0, 0}, p, bad_region), InvalidInput);
   // a flat mesh has no error: nothing is refined, the input comes back
   by_error.error_threshold = 0.01;
   AdaptiveResult r = subdivide_adaptive(m.points, polygons(m), {}, {}, p, by_error);
