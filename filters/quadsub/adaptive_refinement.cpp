@@ -95,13 +95,14 @@ public:
     dist0_ = ring_distance(levels_[0].mesh, seed);
     int farthest = 0;
     for (int d : dist0_) farthest = std::max(farthest, d);
-    const bool unreachable = std::find(dist0_.begin(), dist0_.end(), -1) != dist0_.end();
     for (int allowed = adaptive_.initial_region_rings;; allowed = 2 * allowed + 2) {
       // Children of a face at level l are exact when its 2-ring at level l is: that ring
       // reaches one input quad farther, so each level below 1 costs one ring of margin.
       allowed_ = allowed;
       region_ = allowed + params_.iterations + 1;
-      restricted_ = adaptive_.refine != RefineFaces::All && (unreachable || region_ < farthest);
+      // Once the region holds every reachable quad, compute everything (other components
+      // too), so the widening always ends.
+      restricted_ = adaptive_.refine != RefineFaces::All && region_ < farthest;
       try {
         refine_levels();
         return;
@@ -226,7 +227,8 @@ private:
   // neighbour (recursively), so that faces sharing an edge never differ by two levels.
   void split(int l, int q, bool for_balance) {
     if (levels_[l].state[q] != kLeaf) return;
-    if (restricted_ && dist0_[levels_[l].origin[q]] > allowed_) throw NeedsWiderRegion{};
+    const int d = dist0_[levels_[l].origin[q]];
+    if (restricted_ && (d < 0 || d > allowed_)) throw NeedsWiderRegion{};
     for (int s = 0; s < 4; ++s) {
       const int g = levels_[l].across(q, s);
       if (g < 0) continue;

@@ -321,6 +321,21 @@ TEST(QuadSubAdaptive, WideningTheRegionDoesNotChangeTheResult) {
   EXPECT_TRUE(same_result(a, b));
 }
 
+TEST(QuadSubAdaptive, RegionsTouchingAtOneVertexAreNotMistakenForANonManifoldInput) {
+  // The computed regions around two selected quads (5 rings each for 2 levels: 11 x 11 quads)
+  // meet at the single grid vertex (12, 12) only; the step splits such a vertex in two, and
+  // the points there lie outside the exact zone anyway.
+  QuadMesh m = grid(24, [](double x, double y) { return 0.1 * std::sin(3 * x) * std::cos(2 * y); });
+  std::vector<char> sel(m.quads.size(), 0);
+  sel[6 * 24 + 6] = sel[17 * 24 + 17] = 1;
+  Params p;
+  p.iterations = 2;
+  AdaptiveResult r = subdivide_adaptive(m.points, polygons(m), {}, sel, p, AdaptiveParams{});
+  EXPECT_TRUE(on_uniform_surface(r, subdivide(m.points, polygons(m), {}, p)));
+  EXPECT_EQ(r.refined_per_level[0], 10);  // 2 selected + their 8 edge neighbours (ripple)
+  EXPECT_EQ(max_level_jump(faces_of(r)), 1);
+}
+
 TEST(QuadSubAdaptive, BadAdaptiveInputIsRejected) {
   QuadMesh m = grid(3, flat);
   Params p;
