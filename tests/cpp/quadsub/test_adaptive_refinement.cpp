@@ -336,6 +336,38 @@ TEST(QuadSubAdaptive, RegionsTouchingAtOneVertexAreNotMistakenForANonManifoldInp
   EXPECT_EQ(max_level_jump(faces_of(r)), 1);
 }
 
+TEST(QuadSubAdaptive, ACreaseThroughTheRefinedRegionStaysSharpAndConforming) {
+  // a grid folded by 90 degrees along x = 0.5 (planes z = 0 and x = 0.5), crease marked
+  const int n = 8;
+  QuadMesh m = grid(n, flat);
+  for (auto& q : m.points)
+    if (q[0] > 0.5) { q[2] = q[0] - 0.5; q[0] = 0.5; }
+  EdgeList crease;
+  for (int j = 0; j < n; ++j) crease.push_back({j * (n + 1) + n / 2, (j + 1) * (n + 1) + n / 2});
+  // select the quads on both sides of the fold in the lower half
+  std::vector<char> sel(m.quads.size(), 0);
+  for (int j = 0; j < n / 2; ++j) sel[j * n + n / 2 - 1] = sel[j * n + n / 2] = 1;
+  Params p;
+  p.iterations = 2;
+  AdaptiveResult r = subdivide_adaptive(m.points, polygons(m), crease, sel, p, AdaptiveParams{});
+  int off_planes = 0;
+  for (const auto& q : r.mesh.points) off_planes += std::fabs(q[2]) > 1e-12 && std::fabs(q[0] - 0.5) > 1e-12;
+  EXPECT_EQ(off_planes, 0);
+  EXPECT_EQ(r.levels, 2);
+  EXPECT_EQ(r.crease_edges_in, n);
+  // conforming: an edge used by one face only lies on the grid's outer border
+  const Faces f = faces_of(r);
+  const auto edges = directed_edges(f);
+  for (const auto& [e, face] : edges) {
+    if (edges.count({e.second, e.first})) continue;
+    const Point3 a = r.mesh.points[e.first], b = r.mesh.points[e.second];
+    const bool on_border = (a[1] == 0 && b[1] == 0) || (a[1] == 1 && b[1] == 1) || (a[0] == 0 && b[0] == 0) ||
+                           (a[2] == 0.5 && b[2] == 0.5);
+    EXPECT_TRUE(on_border) << "crack between " << e.first << " and " << e.second;
+  }
+  EXPECT_EQ(max_level_jump(f), 1);
+}
+
 TEST(QuadSubAdaptive, BadAdaptiveInputIsRejected) {
   QuadMesh m = grid(3, flat);
   Params p;
