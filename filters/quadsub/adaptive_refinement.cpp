@@ -102,7 +102,7 @@ public:
       region_ = allowed + params_.iterations + 1;
       // Once the region holds every reachable quad, compute everything (other components
       // too), so the widening always ends.
-      restricted_ = adaptive_.refine != RefineFaces::All && region_ < farthest;
+      restricted_ = region_ < farthest;
       try {
         refine_levels();
         return;
@@ -203,7 +203,7 @@ private:
 
   bool wants_split(int l, int q) const {
     switch (adaptive_.refine) {
-      case RefineFaces::All: return true;
+      case RefineFaces::All: return true;  // (subdivide_adaptive runs the uniform scheme for All)
       case RefineFaces::Selected: return levels_[l].marked[q] != 0;
       case RefineFaces::ErrorAbove: {
         const auto& c = levels_[l].mesh.quads[q];
@@ -352,6 +352,26 @@ private:
   int balance_refinements_ = 0;
 };
 
+// The uniform scheme's result in the adaptive result's terms: every face at the last level.
+AdaptiveResult as_adaptive(Result uniform) {
+  AdaptiveResult r;
+  r.mesh = std::move(uniform.mesh);
+  r.quad_level.assign(r.mesh.quads.size(), uniform.levels);
+  r.vertices_in = uniform.vertices_in;
+  r.faces_in = uniform.faces_in;
+  r.extraordinary_vertices = uniform.extraordinary_vertices;
+  r.crease_edges_in = uniform.crease_edges_in;
+  r.cusps = uniform.cusps;
+  r.levels = uniform.levels;
+  const int quads_in = int(r.mesh.quads.size() >> (2 * uniform.levels));  // after splitting non-quads
+  for (int l = 0; l < uniform.levels; ++l) {
+    r.refined_per_level.push_back(quads_in << (2 * l));
+    r.hierarchy_faces += quads_in << (2 * l);
+  }
+  r.hierarchy_faces += int(r.mesh.quads.size());
+  return r;
+}
+
 }  // namespace
 
 AdaptiveResult subdivide_adaptive(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
@@ -361,6 +381,7 @@ AdaptiveResult subdivide_adaptive(const std::vector<Point3>& points, const std::
     throw InvalidInput("error_threshold must be > 0, got " + std::to_string(adaptive.error_threshold));
   if (adaptive.initial_region_rings < 0)
     throw InvalidInput("initial_region_rings must be >= 0, got " + std::to_string(adaptive.initial_region_rings));
+  if (adaptive.refine == RefineFaces::All) return as_adaptive(subdivide(points, polygons, marked_creases, params));
   Result zero = prepare_level_zero(points, polygons, marked_creases, params);
   std::vector<char> marked;
   if (adaptive.refine == RefineFaces::Selected) {

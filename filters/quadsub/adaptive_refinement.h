@@ -49,6 +49,7 @@ struct AdaptiveResult {
 /// pass the criterion are split into four. Level 1 is computed in full; deeper levels only
 /// near the refined faces, wide enough that every stencil is the uniform one. A face is split only after its coarser edge
 /// neighbours (balance), and an unsplit face whose four neighbours are split is split too.
+/// RefineFaces::All runs `subdivide` (every face at level `levels`).
 /// `selected_polygons[i]` marks polygon i (read with RefineFaces::Selected; a split non-quad
 /// polygon passes the mark to all its quads).
 /// \throw InvalidInput on bad parameters (as `subdivide`, plus a threshold <= 0 or a selection

@@ -32,11 +32,12 @@ QString FilterInterpolatoryQuadPlugin::filterInfo(ActionIDType) const {
          "(e = (8+w)/16 (p0+q0) - w/16 (p*+q*)); face points apply the same rule to the new edge points; "
          "at extraordinary vertices a virtual point replaces the missing neighbour. Boundaries use the "
          "curve rule on boundary vertices only, with reflection at corners; selected edges, or edges "
-         "sharper than the crease angle, stay sharp; selected vertices can be cusps. Adaptive refinement splits only the selected faces, or "
-         "the faces whose face point lies farther than a threshold from their bilinear centre; faces sharing "
-         "an edge differ by at most one level and hanging points are closed by transition quads and "
-         "triangles, so the result has no cracks. The result is a new layer of quads (faux diagonals), plus "
-         "transition triangles when adaptive, with the per-face attribute <code>subdivision_level</code>.<br>"
+         "sharper than the crease angle, stay sharp; selected vertices can be cusps. Adaptive refinement "
+         "splits only the selected faces, or the faces whose face point lies farther than a threshold from "
+         "their bilinear centre; faces sharing an edge differ by at most one level and hanging points are "
+         "closed by transition quads and triangles, so the result has no cracks. The result is a new layer "
+         "of quads (faux diagonals), plus transition triangles when adaptive, with the per-face attribute "
+         "<code>subdivision_level</code>.<br>"
          "For more details see:<br>"
          "<b>L. Kobbelt, T. Hesse, H. Prautzsch, K. Schweizerhof</b><br>"
          "<a href=\"https://doi.org/10.1108/02644409710170339\">'Iterative Mesh Generation for FE-Computations "
@@ -105,7 +106,9 @@ std::map<std::string, QVariant> FilterInterpolatoryQuadPlugin::applyFilter(
     throw MLException("meshing_surface_subdivision_interpolatory_quad: adaptive must be 0 (all faces), "
                       "1 (selected faces) or 2 (faces above error threshold)");
   mr::quadsub::AdaptiveParams ap;
-  ap.refine = refine == 1 ? mr::quadsub::RefineFaces::Selected : mr::quadsub::RefineFaces::ErrorAbove;
+  ap.refine = refine == 0   ? mr::quadsub::RefineFaces::All
+              : refine == 1 ? mr::quadsub::RefineFaces::Selected
+                            : mr::quadsub::RefineFaces::ErrorAbove;
   const double diag = model->cm.bbox.IsNull() ? 0.0 : double(model->cm.bbox.Diag());
   ap.error_threshold = diag > 0 ? params.getAbsPerc("error_threshold") / diag : 0.0;
 
@@ -132,20 +135,7 @@ std::map<std::string, QVariant> FilterInterpolatoryQuadPlugin::applyFilter(
           if (f.IsFaceEdgeS(z) && !f.IsF(z))
             creases.push_back({int(vcg::tri::Index(copy.mesh, f.cV(z))), int(vcg::tri::Index(copy.mesh, f.cV((z + 1) % 3)))});
     if (cb) cb(20, "Subdividing");
-    if (refine != 0) return mr::quadsub::subdivide_adaptive(points, polygons, creases, selected, p, ap);
-    mr::quadsub::Result u = mr::quadsub::subdivide(points, polygons, creases, p);
-    mr::quadsub::AdaptiveResult all;  // the uniform scheme, in the adaptive result's terms
-    all.mesh = std::move(u.mesh);
-    all.quad_level.assign(all.mesh.quads.size(), u.levels);
-    all.vertices_in = u.vertices_in;
-    all.faces_in = u.faces_in;
-    all.extraordinary_vertices = u.extraordinary_vertices;
-    all.crease_edges_in = u.crease_edges_in;
-    all.cusps = u.cusps;
-    all.levels = u.levels;
-    const int quads_in = int(all.mesh.quads.size() >> (2 * u.levels));  // after splitting non-quads
-    for (int l = 0; l < u.levels; ++l) all.refined_per_level.push_back(quads_in << (2 * l));
-    return all;
+    return mr::quadsub::subdivide_adaptive(points, polygons, creases, selected, p, ap);
   });
   if (cb) cb(90, "Writing the new layer");
   mr::TriMesh out;

@@ -53,6 +53,8 @@ def test_every_input_vertex_is_kept_bit_for_bit_and_the_output_is_quads(name):
     assert r["faces_out"] == 4 * quads_in
     assert polygon_sizes(out) == {4: r["faces_out"]}
     assert np.isfinite(out.vertex_matrix()).all()
+    assert (out.face_custom_scalar_attribute_array("subdivision_level") == 1).all()
+    assert r["faces_refined_level_0"] == quads_in and r["triangles_out"] == 0
 
 
 @pytest.mark.parametrize("name", ["quad/quadknot.obj", "quad/torus_quad.off"])
