@@ -382,20 +382,18 @@ AdaptiveResult subdivide_adaptive(const std::vector<Point3>& points, const std::
   if (adaptive.initial_region_rings < 0)
     throw InvalidInput("initial_region_rings must be >= 0, got " + std::to_string(adaptive.initial_region_rings));
   if (adaptive.refine == RefineFaces::All) return as_adaptive(subdivide(points, polygons, marked_creases, params));
-  Result zero = prepare_level_zero(points, polygons, marked_creases, params);
-  std::vector<char> marked;
   if (adaptive.refine == RefineFaces::Selected) {
     if (selected_polygons.size() != polygons.size())
       throw InvalidInput("the selection has " + std::to_string(selected_polygons.size()) + " entries for " +
                          std::to_string(polygons.size()) + " polygons");
     if (std::find(selected_polygons.begin(), selected_polygons.end(), 1) == selected_polygons.end())
       throw InvalidInput("no face is selected: select the faces to refine, or refine all faces or by error");
-    // quads_from_polygons keeps a quad as one quad and splits an n-gon into n quads, in order
-    for (size_t i = 0; i < polygons.size(); ++i)
-      marked.insert(marked.end(), polygons[i].size() == 4 ? 1 : polygons[i].size(), selected_polygons[i]);
-  } else {
-    marked.assign(zero.mesh.quads.size(), 0);
   }
+  std::vector<int> polygon_of_quad;
+  Result zero = prepare_level_zero(points, polygons, marked_creases, params, &polygon_of_quad);
+  std::vector<char> marked(zero.mesh.quads.size(), 0);
+  if (adaptive.refine == RefineFaces::Selected)
+    for (size_t q = 0; q < marked.size(); ++q) marked[q] = selected_polygons[polygon_of_quad[q]];
   Box3 box;
   for (const auto& p : points) box.Add(p);
 

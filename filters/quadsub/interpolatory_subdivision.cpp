@@ -266,7 +266,7 @@ QuadMesh subdivide_step(const QuadMesh& mesh, const EdgeList& creases, const Par
 }
 
 Result prepare_level_zero(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
-                          const EdgeList& marked_creases, const Params& params) {
+                          const EdgeList& marked_creases, const Params& params, std::vector<int>* polygon_of_quad) {
   const double max_w = std::sqrt(5.0) - 1.0;
   if (!(params.w >= 0.0 && params.w <= max_w))
     throw InvalidInput("tension w must lie in [0, sqrt(5)-1 = 1.2361], got " + std::to_string(params.w));
@@ -289,7 +289,7 @@ Result prepare_level_zero(const std::vector<Point3>& points, const std::vector<s
   Result result;
   result.vertices_in = int(points.size());
   result.faces_in = int(polygons.size());
-  QuadMesh mesh = quads_from_polygons(points, polygons);
+  QuadMesh mesh = quads_from_polygons(points, polygons, polygon_of_quad);
   EdgeList creases = marked_creases;
   if (params.crease_angle_deg > 0) {
     // Quad normals by the cross product of the diagonals; an edge between quads whose normals

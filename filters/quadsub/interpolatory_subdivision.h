@@ -51,9 +51,11 @@ QuadMesh subdivide_step(const QuadMesh& mesh, const EdgeList& creases, const Par
 
 /// Level 0 of `subdivide`: validates, splits non-quads into quads and finds the creases
 /// (marked edges plus the crease angle); `levels` is 0 and `mesh` the quads to refine.
+/// `polygon_of_quad`, when given, receives the input polygon of each quad.
 /// \throw as `subdivide`.
 Result prepare_level_zero(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
-                          const EdgeList& marked_creases, const Params& params);
+                          const EdgeList& marked_creases, const Params& params,
+                          std::vector<int>* polygon_of_quad = nullptr);
 
 /// Splits non-quads, finds creases (marked edges plus the crease angle), runs the steps.
 /// \throw InvalidInput on bad parameters, empty input or NaN; TopologyError on

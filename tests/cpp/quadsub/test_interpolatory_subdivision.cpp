@@ -295,3 +295,34 @@ TEST(QuadSub, CuspKeepsTheTipOfAConePointed) {
   QuadMesh m = cone(4, 2);
   EXPECT_THROW(subdivide(m.points, polygons(m), {}, bad), InvalidInput);
 }
+
+TEST(QuadSub, MixedPolygonMeshesAreSplitWithoutHangingMidpoints) {
+  // a closed pentagonal prism: 2 pentagons, 5 side quads
+  std::vector<Point3> pts;
+  for (int z = 0; z < 2; ++z)
+    for (int k = 0; k < 5; ++k) pts.push_back(Point3(std::cos(2 * kPi * k / 5), std::sin(2 * kPi * k / 5), z));
+  std::vector<std::vector<int>> faces = {{4, 3, 2, 1, 0}, {5, 6, 7, 8, 9}};
+  for (int k = 0; k < 5; ++k) faces.push_back({k, (k + 1) % 5, 5 + (k + 1) % 5, 5 + k});
+  std::vector<int> polygon_of_quad;
+  QuadMesh q = quads_from_polygons(pts, faces, &polygon_of_quad);
+  // each pentagon -> 5 quads; each side quad lies on a strip from pentagon to pentagon -> 2 quads
+  EXPECT_EQ(q.quads.size(), 20u);
+  EXPECT_EQ(std::count(polygon_of_quad.begin(), polygon_of_quad.end(), 2), 2);
+  auto closed = [](const QuadMesh& m) {
+    std::map<std::pair<int, int>, int> directed;
+    for (const auto& f : m.quads)
+      for (int s = 0; s < 4; ++s) ++directed[{f[s], f[(s + 1) % 4]}];
+    for (const auto& [e, c] : directed)
+      if (c != 1 || !directed.count({e.second, e.first})) return false;
+    return true;
+  };
+  EXPECT_TRUE(closed(q));
+  Result r = subdivide(pts, faces, {}, Params{});
+  EXPECT_TRUE(closed(r.mesh));
+  EXPECT_EQ(r.mesh.quads.size(), 80u);
+  // a pure quad mesh comes back unchanged
+  QuadMesh g = grid(3, [](double, double) { return 0.0; });
+  QuadMesh same = quads_from_polygons(g.points, polygons(g));
+  EXPECT_EQ(same.quads, g.quads);
+  EXPECT_EQ(same.points.size(), g.points.size());
+}
