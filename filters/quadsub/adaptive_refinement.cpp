@@ -386,14 +386,14 @@ AdaptiveResult subdivide_adaptive(const std::vector<Point3>& points, const std::
     if (selected_polygons.size() != polygons.size())
       throw InvalidInput("the selection has " + std::to_string(selected_polygons.size()) + " entries for " +
                          std::to_string(polygons.size()) + " polygons");
-    if (std::find(selected_polygons.begin(), selected_polygons.end(), 1) == selected_polygons.end())
+    if (std::none_of(selected_polygons.begin(), selected_polygons.end(), [](char s) { return s != 0; }))
       throw InvalidInput("no face is selected: select the faces to refine, or refine all faces or by error");
   }
   std::vector<int> polygon_of_quad;
   Result zero = prepare_level_zero(points, polygons, marked_creases, params, &polygon_of_quad);
   std::vector<char> marked(zero.mesh.quads.size(), 0);
   if (adaptive.refine == RefineFaces::Selected)
-    for (size_t q = 0; q < marked.size(); ++q) marked[q] = selected_polygons[polygon_of_quad[q]];
+    for (size_t q = 0; q < marked.size(); ++q) marked[q] = selected_polygons[polygon_of_quad[q]] != 0;
   Box3 box;
   for (const auto& p : points) box.Add(p);
 
