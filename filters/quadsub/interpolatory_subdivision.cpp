@@ -130,8 +130,15 @@ struct Topology {
 class Step {
 public:
   Step(const CutMesh& cut, const Params& params)
-      : m_(cut.mesh), corner_(cut.corner), topo_(cut.mesh), a_((8.0 + params.w) / 16.0), b_(-params.w / 16.0),
-        gamma_(diagonal_correction_weight(params.w)) {
+      : m_(cut.mesh), corner_(cut.corner), cusp_(cut.origin.size(), 0), topo_(cut.mesh), a_((8.0 + params.w) / 16.0),
+        b_(-params.w / 16.0), gamma_(diagonal_correction_weight(params.w)) {
+    std::vector<char> is_cusp;
+    for (int v : params.cusp_vertices) {
+      if (v >= int(is_cusp.size())) is_cusp.resize(v + 1, 0);
+      is_cusp[v] = 1;
+    }
+    for (size_t c = 0; c < cut.origin.size(); ++c)
+      cusp_[c] = cut.origin[c] < int(is_cusp.size()) && is_cusp[cut.origin[c]];
     const double cos_corner = std::cos(params.corner_angle_deg * kPi / 180.0);
     for (int v = 0; v < int(m_.points.size()); ++v) {
       const auto& r = topo_.ring[v];
@@ -147,6 +154,9 @@ public:
   Point3 beyond(int v, int u) const {
     const auto& r = topo_.ring[v];
     const Point3& pv = m_.points[v];
+    // A cusp is the limit of a hole shrunk to v: each edge reaching it sees one inner
+    // neighbour, whose ghost 2p - mean(inner) is the reflection of u.
+    if (cusp_[v]) return pv * 2.0 - m_.points[u];
     if (r.boundary) {
       const bool along_border = u == r.p.front() || u == r.p.back();
       if (along_border && is_border_edge(u, v)) {
@@ -186,6 +196,7 @@ public:
 private:
   const QuadMesh& m_;
   std::vector<char> corner_;
+  std::vector<char> cusp_;
   Topology topo_;
   double a_, b_, gamma_;
 };
@@ -254,8 +265,8 @@ QuadMesh subdivide_step(const QuadMesh& mesh, const EdgeList& creases, const Par
   return out;
 }
 
-Result subdivide(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
-                 const EdgeList& marked_creases, const Params& params) {
+Result prepare_level_zero(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
+                          const EdgeList& marked_creases, const Params& params, std::vector<int>* polygon_of_quad) {
   const double max_w = std::sqrt(5.0) - 1.0;
   if (!(params.w >= 0.0 && params.w <= max_w))
     throw InvalidInput("tension w must lie in [0, sqrt(5)-1 = 1.2361], got " + std::to_string(params.w));
@@ -270,11 +281,15 @@ Result subdivide(const std::vector<Point3>& points, const std::vector<std::vecto
   for (const auto& p : points)
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       throw InvalidInput("the input mesh has NaN or infinite vertex coordinates");
+  for (int v : params.cusp_vertices)
+    if (v < 0 || v >= int(points.size()))
+      throw InvalidInput("cusp vertex " + std::to_string(v) + " is not a vertex of the input (0.." +
+                         std::to_string(points.size() - 1) + ")");
 
   Result result;
   result.vertices_in = int(points.size());
   result.faces_in = int(polygons.size());
-  QuadMesh mesh = quads_from_polygons(points, polygons);
+  QuadMesh mesh = quads_from_polygons(points, polygons, polygon_of_quad);
   EdgeList creases = marked_creases;
   if (params.crease_angle_deg > 0) {
     // Quad normals by the cross product of the diagonals; an edge between quads whose normals
@@ -294,16 +309,27 @@ Result subdivide(const std::vector<Point3>& points, const std::vector<std::vecto
   }
   result.crease_edges_in = int(creases.size());
   {
+    std::vector<int> cusps = params.cusp_vertices;
+    std::sort(cusps.begin(), cusps.end());
+    result.cusps = int(std::unique(cusps.begin(), cusps.end()) - cusps.begin());
+  }
+  {
     const Topology topo(cut_along_creases(mesh, {}, params.corner_angle_deg).mesh);
     for (const auto& r : topo.ring) result.extraordinary_vertices += !r.boundary && !r.p.empty() && r.p.size() != 4;
   }
-  for (int level = 0; level < params.iterations; ++level) {
-    EdgeList next;
-    mesh = subdivide_step(mesh, creases, params, &next);
-    creases.swap(next);
-  }
   result.mesh = std::move(mesh);
   result.creases = std::move(creases);
+  return result;
+}
+
+Result subdivide(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
+                 const EdgeList& marked_creases, const Params& params) {
+  Result result = prepare_level_zero(points, polygons, marked_creases, params);
+  for (int level = 0; level < params.iterations; ++level) {
+    EdgeList next;
+    result.mesh = subdivide_step(result.mesh, result.creases, params, &next);
+    result.creases.swap(next);
+  }
   result.levels = params.iterations;
   return result;
 }

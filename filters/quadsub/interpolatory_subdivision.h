@@ -19,6 +19,11 @@ struct Params {
   double w = 1.0;                   ///< tension, [0, sqrt(5)-1]: 1 = cubic precision, 0 = midpoints
   double corner_angle_deg = 60.0;   ///< a boundary or crease turning by more than this is a corner
   double crease_angle_deg = 0.0;    ///< edges whose faces meet at more than this are creases (0 = off)
+  /// Input vertices where the surface comes to a point (the tip of a cone): every edge
+  /// curve through a cusp ends there along its own edge (the point beyond the cusp is the
+  /// reflection 2c - b of the neighbour), as if a hole had shrunk to the point, so there is
+  /// no tangent plane. Indices stay valid at every level (old vertices keep their index).
+  std::vector<int> cusp_vertices;
 };
 
 struct Result {
@@ -27,6 +32,7 @@ struct Result {
   int vertices_in = 0, faces_in = 0;
   int extraordinary_vertices = 0;   ///< interior vertices of valence != 4 in the input quad mesh
   int crease_edges_in = 0;
+  int cusps = 0;
   int levels = 0;
 };
 
@@ -37,8 +43,19 @@ double diagonal_correction_weight(double w);
 
 /// One subdivision step; `face_points_by_direction`, when given, receives for every
 /// face the face point computed across each pair of opposite edges.
+/// The result keeps `mesh.points` as the prefix of its points; quad q of `mesh` becomes
+/// quads 4q+k (k = 0..3) = {c[k], edge point of (c[k], c[k+1]), face point, edge point of
+/// (c[k-1], c[k])}, c = mesh.quads[q]; an edge point is one vertex shared by both faces of its edge.
 QuadMesh subdivide_step(const QuadMesh& mesh, const EdgeList& creases, const Params& params, EdgeList* new_creases,
                         std::vector<std::pair<Point3, Point3>>* face_points_by_direction = nullptr);
+
+/// Level 0 of `subdivide`: validates, splits non-quads into quads and finds the creases
+/// (marked edges plus the crease angle); `levels` is 0 and `mesh` the quads to refine.
+/// `polygon_of_quad`, when given, receives the input polygon of each quad.
+/// \throw as `subdivide`.
+Result prepare_level_zero(const std::vector<Point3>& points, const std::vector<std::vector<int>>& polygons,
+                          const EdgeList& marked_creases, const Params& params,
+                          std::vector<int>* polygon_of_quad = nullptr);
 
 /// Splits non-quads, finds creases (marked edges plus the crease angle), runs the steps.
 /// \throw InvalidInput on bad parameters, empty input or NaN; TopologyError on

@@ -221,3 +221,108 @@ TEST(QuadSub, BadInputIsRejected) {
   std::vector<Point3> pts = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, -1, 0}, {0, -1, 0}, {1, 0, 1}, {0, 0, 1}};
   EXPECT_THROW(subdivide(pts, {{0, 1, 2, 3}, {1, 0, 5, 4}, {0, 1, 6, 7}}, {}, Params{}), TopologyError);
 }
+
+namespace {
+// A cone z = 1 - |(x, y)| over a fan of n sectors of k x k quads around its tip (vertex 0):
+// the lattice lines from the tip along sector borders are the cone's straight generators.
+QuadMesh cone(int n, int k) {
+  QuadMesh m;
+  std::map<std::pair<int, std::pair<int, int>>, int> index;
+  auto vertex = [&](int s, int a, int b) {
+    if (a == 0 && b == 0) s = 0;
+    else if (a == 0) { s = (s + 1) % n; a = b; b = 0; }
+    auto key = std::make_pair(s, std::make_pair(a, b));
+    auto it = index.find(key);
+    if (it != index.end()) return it->second;
+    double t0 = 2 * kPi * s / n, t1 = 2 * kPi * (s + 1) / n;
+    Point3 p(a * std::cos(t0) + b * std::cos(t1), a * std::sin(t0) + b * std::sin(t1), 0);
+    p[2] = 1 - std::hypot(p[0], p[1]);
+    m.points.push_back(p);
+    return index[key] = int(m.points.size()) - 1;
+  };
+  for (int s = 0; s < n; ++s)
+    for (int a = 0; a < k; ++a)
+      for (int b = 0; b < k; ++b)
+        m.quads.push_back({vertex(s, a, b), vertex(s, a + 1, b), vertex(s, a + 1, b + 1), vertex(s, a, b + 1)});
+  return m;
+}
+
+// Mean angle (degrees) between the z axis and the normals of the quads touching vertex v.
+double tilt_around(const QuadMesh& m, int v) {
+  double sum = 0;
+  int count = 0;
+  for (const auto& q : m.quads) {
+    if (std::find(q.begin(), q.end(), v) == q.end()) continue;
+    Point3 nrm = (m.points[q[2]] - m.points[q[0]]) ^ (m.points[q[3]] - m.points[q[1]]);
+    sum += std::acos(std::fabs(nrm[2]) / nrm.Norm()) * 180 / kPi;
+    ++count;
+  }
+  return sum / count;
+}
+}  // namespace
+
+TEST(QuadSub, CuspKeepsTheTipOfAConePointed) {
+  for (int n : {4, 5}) {
+    QuadMesh m = cone(n, 3);
+    ASSERT_EQ(m.points[0], Point3(0, 0, 1));
+    Params with_cusp;
+    with_cusp.cusp_vertices = {0};
+    // one step: edge points on the generators through the tip lie on them (linear precision)
+    QuadMesh one = subdivide_step(m, {}, with_cusp, nullptr);
+    QuadMesh smooth_one = subdivide_step(m, {}, Params{}, nullptr);
+    int generators = 0;
+    for (size_t q = 0; q < m.quads.size(); ++q) {
+      if (m.quads[q][0] != 0) continue;  // quads at the tip start there
+      const Point3 mid = (m.points[0] + m.points[m.quads[q][1]]) * 0.5;
+      EXPECT_LT((one.points[one.quads[4 * q][1]] - mid).Norm(), 1e-14);
+      EXPECT_GT(smooth_one.points[smooth_one.quads[4 * q][1]][2] - mid[2], 1e-3);  // rounded without
+      ++generators;
+    }
+    EXPECT_EQ(generators, n);
+    // three steps: the faces at the tip stay tilted like the cone (45 deg), not flattened
+    with_cusp.iterations = 3;
+    Params smooth;
+    smooth.iterations = 3;
+    Result pointed = subdivide(m.points, polygons(m), {}, with_cusp);
+    Result rounded = subdivide(m.points, polygons(m), {}, smooth);
+    EXPECT_EQ(pointed.cusps, 1);
+    EXPECT_NEAR(tilt_around(pointed.mesh, 0), 45.0, 2.0) << "valence " << n;  // measured 45.6, 44.8
+    EXPECT_LT(tilt_around(rounded.mesh, 0), 30.0) << "valence " << n;  // measured 23.5, 20.3
+    EXPECT_EQ(pointed.mesh.points[0], m.points[0]);
+  }
+  Params bad;
+  bad.cusp_vertices = {1000};
+  QuadMesh m = cone(4, 2);
+  EXPECT_THROW(subdivide(m.points, polygons(m), {}, bad), InvalidInput);
+}
+
+TEST(QuadSub, MixedPolygonMeshesAreSplitWithoutHangingMidpoints) {
+  // a closed pentagonal prism: 2 pentagons, 5 side quads
+  std::vector<Point3> pts;
+  for (int z = 0; z < 2; ++z)
+    for (int k = 0; k < 5; ++k) pts.push_back(Point3(std::cos(2 * kPi * k / 5), std::sin(2 * kPi * k / 5), z));
+  std::vector<std::vector<int>> faces = {{4, 3, 2, 1, 0}, {5, 6, 7, 8, 9}};
+  for (int k = 0; k < 5; ++k) faces.push_back({k, (k + 1) % 5, 5 + (k + 1) % 5, 5 + k});
+  std::vector<int> polygon_of_quad;
+  QuadMesh q = quads_from_polygons(pts, faces, &polygon_of_quad);
+  // each pentagon -> 5 quads; each side quad lies on a strip from pentagon to pentagon -> 2 quads
+  EXPECT_EQ(q.quads.size(), 20u);
+  EXPECT_EQ(std::count(polygon_of_quad.begin(), polygon_of_quad.end(), 2), 2);
+  auto closed = [](const QuadMesh& m) {
+    std::map<std::pair<int, int>, int> directed;
+    for (const auto& f : m.quads)
+      for (int s = 0; s < 4; ++s) ++directed[{f[s], f[(s + 1) % 4]}];
+    for (const auto& [e, c] : directed)
+      if (c != 1 || !directed.count({e.second, e.first})) return false;
+    return true;
+  };
+  EXPECT_TRUE(closed(q));
+  Result r = subdivide(pts, faces, {}, Params{});
+  EXPECT_TRUE(closed(r.mesh));
+  EXPECT_EQ(r.mesh.quads.size(), 80u);
+  // a pure quad mesh comes back unchanged
+  QuadMesh g = grid(3, [](double, double) { return 0.0; });
+  QuadMesh same = quads_from_polygons(g.points, polygons(g));
+  EXPECT_EQ(same.quads, g.quads);
+  EXPECT_EQ(same.points.size(), g.points.size());
+}
