@@ -1,0 +1,109 @@
+#include "union/exact.h"
+
+#include <cmath>
+#include <utility>
+
+namespace mr::surface_union {
+
+namespace {
+
+int sign_of(const mpq_class& v) { return sgn(v); }
+
+}  // namespace
+
+QPoint make_point(const std::array<double, 3>& p) {
+  QPoint r;
+  for (int k = 0; k < 3; ++k) {
+    r.q[k] = p[k];  // exact: every double is a dyadic rational
+    r.d[k] = p[k];
+  }
+  return r;
+}
+
+QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z) {
+  QPoint r;
+  r.q = {x, y, z};
+  for (int k = 0; k < 3; ++k) {
+    r.q[k].canonicalize();
+    r.d[k] = r.q[k].get_d();
+  }
+  return r;
+}
+
+bool same_point(const QPoint& a, const QPoint& b) {
+  return a.q[0] == b.q[0] && a.q[1] == b.q[1] && a.q[2] == b.q[2];
+}
+
+mpq_class orient3d_exact(const double* a, const double* b, const double* c, const double* d) {
+  mpq_class m[3][3];
+  for (int k = 0; k < 3; ++k) {
+    mpq_class ak(a[k]);
+    m[0][k] = mpq_class(b[k]) - ak;
+    m[1][k] = mpq_class(c[k]) - ak;
+    m[2][k] = mpq_class(d[k]) - ak;
+  }
+  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+int orient3d(const double* a, const double* b, const double* c, const double* d) {
+  const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
+  const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
+  const double dx = d[0] - a[0], dy = d[1] - a[1], dz = d[2] - a[2];
+  const double t1 = cy * dz, t2 = cz * dy, t3 = cx * dz, t4 = cz * dx, t5 = cx * dy, t6 = cy * dx;
+  const double det = bx * (t1 - t2) - by * (t3 - t4) + bz * (t5 - t6);
+  const double perm = std::fabs(bx) * (std::fabs(t1) + std::fabs(t2)) + std::fabs(by) * (std::fabs(t3) + std::fabs(t4)) +
+                      std::fabs(bz) * (std::fabs(t5) + std::fabs(t6));
+  // Shewchuk's bound for this evaluation order is 7.8e-16 * perm; the differences
+  // themselves are rounded too, so we use a generous 1e-14 (the fallback is exact).
+  const double bound = 1e-14 * perm;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return sign_of(orient3d_exact(a, b, c, d));
+}
+
+mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
+  return (b.q[i] - a.q[i]) * (c.q[j] - a.q[j]) - (b.q[j] - a.q[j]) * (c.q[i] - a.q[i]);
+}
+
+int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
+  const double bx = b.d[i] - a.d[i], by = b.d[j] - a.d[j];
+  const double cx = c.d[i] - a.d[i], cy = c.d[j] - a.d[j];
+  const double det = bx * cy - by * cx;
+  // The doubles are within one ulp of the rationals: bound the error by the
+  // magnitudes of the coordinates involved, generously.
+  const double mi = std::fabs(a.d[i]) + std::fabs(b.d[i]) + std::fabs(c.d[i]);
+  const double mj = std::fabs(a.d[j]) + std::fabs(b.d[j]) + std::fabs(c.d[j]);
+  const double bound = 1e-13 * mi * mj;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return sign_of(orient2d_exact(a, b, c, i, j));
+}
+
+QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t) {
+  return make_point(a.q[0] + t * (b.q[0] - a.q[0]), a.q[1] + t * (b.q[1] - a.q[1]), a.q[2] + t * (b.q[2] - a.q[2]));
+}
+
+Projection face_projection(const QPoint& qa, const QPoint& qb, const QPoint& qc) {
+  const double* a = qa.d.data();
+  const double* b = qb.d.data();
+  const double* c = qc.d.data();
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  int k = 0;
+  for (int t = 1; t < 3; ++t)
+    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+  Projection p{(k + 1) % 3, (k + 2) % 3};
+  int o = orient2d(qa, qb, qc, p.i, p.j);
+  for (int t = 0; t < 3 && o == 0; ++t) {  // the double normal chose a degenerate axis
+    p = {(t + 1) % 3, (t + 2) % 3};
+    o = orient2d(qa, qb, qc, p.i, p.j);
+  }
+  if (o < 0) std::swap(p.i, p.j);
+  return p;
+}
+
+int compare(const QPoint& a, const QPoint& b, int axis) { return cmp(a.q[axis], b.q[axis]); }
+
+}  // namespace mr::surface_union

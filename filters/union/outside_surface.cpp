@@ -1,0 +1,187 @@
+#include "union/outside_surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+namespace mr::surface_union {
+
+namespace {
+
+using V3 = std::array<double, 3>;
+V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+V3 unit(V3 a) {
+  const double n = std::sqrt(dot(a, a));
+  if (n > 0) for (double& x : a) x /= n;
+  return a;
+}
+
+int find(std::vector<int>& uf, int x) {
+  while (uf[x] != x) x = uf[x] = uf[uf[x]];
+  return x;
+}
+
+/// Generalized winding number of point p with respect to the faces of one body.
+double winding_number(const Soup& soup, const std::vector<int>& faces, const V3& p) {
+  double total = 0;
+  for (int f : faces) {
+    const V3 a = sub3(soup.vertex[soup.face[f][0]], p), b = sub3(soup.vertex[soup.face[f][1]], p),
+             c = sub3(soup.vertex[soup.face[f][2]], p);
+    const double la = std::sqrt(dot(a, a)), lb = std::sqrt(dot(b, b)), lc = std::sqrt(dot(c, c));
+    const double num = dot(a, cross(b, c));
+    const double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+    total += 2 * std::atan2(num, den);
+  }
+  return total / (4 * 3.14159265358979323846);
+}
+
+}  // namespace
+
+Classification classify_outside(const PointTable& points, const std::vector<std::array<int, 3>>& sub,
+                                const std::vector<int>& sub_body, const std::vector<char>& dropped,
+                                const Soup& soup) {
+  const int ns = int(sub.size());
+  Classification out;
+  out.kept.assign(ns, 0);
+  out.partner.assign(3 * size_t(ns), -1);
+  out.line_edge.assign(3 * size_t(ns), 0);
+  auto P = [&](int id) -> V3 { return points[id].d; };
+
+  // Half-edges grouped by undirected edge.
+  struct HalfEdge {
+    uint64_t key;
+    int side;  // 3*s + z
+  };
+  std::vector<HalfEdge> he;
+  he.reserve(3 * size_t(ns));
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    for (int z = 0; z < 3; ++z) {
+      const int u = sub[s][z], w = sub[s][(z + 1) % 3];
+      he.push_back({(uint64_t(uint32_t(std::min(u, w))) << 32) | uint32_t(std::max(u, w)), 3 * s + z});
+    }
+  }
+  std::sort(he.begin(), he.end(), [](const HalfEdge& a, const HalfEdge& b) {
+    return a.key < b.key || (a.key == b.key && a.side < b.side);
+  });
+  std::vector<int> group_begin;
+  std::vector<int> group_of(3 * size_t(ns), -1);
+  for (size_t i = 0; i < he.size(); ++i) {
+    if (i == 0 || he[i].key != he[i - 1].key) group_begin.push_back(int(i));
+    group_of[he[i].side] = int(group_begin.size()) - 1;
+  }
+  group_begin.push_back(int(he.size()));
+
+  // Intersection edges and pieces.
+  std::vector<int> uf(ns);
+  std::iota(uf.begin(), uf.end(), 0);
+  for (size_t g = 0; g + 1 < group_begin.size(); ++g) {
+    const int b = group_begin[g], e = group_begin[g + 1];
+    bool mixed = e - b > 2;
+    for (int i = b + 1; i < e; ++i) {
+      mixed |= sub_body[he[i].side / 3] != sub_body[he[b].side / 3];
+      uf[find(uf, he[i].side / 3)] = find(uf, he[b].side / 3);
+    }
+    if (mixed)
+      for (int i = b; i < e; ++i) out.line_edge[he[i].side] = 1;
+  }
+
+  // The visible neighbour across side 3*s+z.
+  auto across = [&](int s, int z) -> int {
+    const int g = group_of[3 * s + z];
+    const int b = group_begin[g], e = group_begin[g + 1];
+    if (e - b == 2) return he[b].side == 3 * s + z ? he[b + 1].side : he[b].side;
+    const V3 U = P(sub[s][z]), W = P(sub[s][(z + 1) % 3]), X = P(sub[s][(z + 2) % 3]);
+    const V3 d = unit(sub3(W, U));
+    auto perp = [&](const V3& Y) {
+      V3 r = sub3(Y, U);
+      const double t = dot(r, d);
+      for (int k = 0; k < 3; ++k) r[k] -= t * d[k];
+      return unit(r);
+    };
+    const V3 rf = perp(X);
+    const V3 nf = cross(d, rf);  // towards the outside of s
+    int best = -1;
+    double best_angle = 1e300;
+    for (int i = b; i < e; ++i) {
+      const int side = he[i].side;
+      if (side == 3 * s + z) continue;
+      const int t = side / 3, y = side % 3;
+      const V3 rg = perp(P(sub[t][(y + 2) % 3]));
+      double a = std::atan2(dot(rg, nf), dot(rg, rf));
+      if (a <= 0) a += 2 * 3.14159265358979323846;
+      if (a < best_angle) { best_angle = a; best = side; }
+    }
+    return best;
+  };
+
+  // Pieces: extreme vertex (largest x, then y, z) and the face there seen best from +x.
+  std::vector<int> root_list;
+  std::vector<int> extreme(ns, -1);  // per root: point index
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    const int r = find(uf, s);
+    if (extreme[r] < 0) root_list.push_back(r);
+    for (int z = 0; z < 3; ++z) {
+      const int p = sub[s][z];
+      if (extreme[r] < 0 || points[p].d > points[extreme[r]].d) extreme[r] = p;
+    }
+  }
+  out.pieces = int(root_list.size());
+  std::vector<int> start(ns, -1);
+  std::vector<double> start_score(ns, -2);
+  std::vector<std::set<int>> piece_bodies(ns);
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    const int r = find(uf, s);
+    piece_bodies[r].insert(sub_body[s]);
+    if (sub[s][0] != extreme[r] && sub[s][1] != extreme[r] && sub[s][2] != extreme[r]) continue;
+    const V3 n = unit(cross(sub3(P(sub[s][1]), P(sub[s][0])), sub3(P(sub[s][2]), P(sub[s][0]))));
+    if (n[0] > start_score[r]) { start_score[r] = n[0]; start[r] = s; }
+  }
+  // Faces of each body, for the point-in-body test.
+  std::vector<std::vector<int>> body_faces(soup.body_count);
+  std::vector<std::array<double, 6>> body_box(soup.body_count, {1e300, 1e300, 1e300, -1e300, -1e300, -1e300});
+  for (int f = 0; f < int(soup.face.size()); ++f) {
+    body_faces[soup.body[f]].push_back(f);
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) {
+        body_box[soup.body[f]][k] = std::min(body_box[soup.body[f]][k], soup.vertex[soup.face[f][c]][k]);
+        body_box[soup.body[f]][k + 3] = std::max(body_box[soup.body[f]][k + 3], soup.vertex[soup.face[f][c]][k]);
+      }
+  }
+  std::vector<int> stack;
+  for (int r : root_list) {
+    const V3 p = P(extreme[r]);
+    bool inside = false;
+    for (int b = 0; b < soup.body_count && !inside; ++b) {
+      if (piece_bodies[r].count(b)) continue;
+      const auto& bb = body_box[b];
+      if (p[0] < bb[0] || p[1] < bb[1] || p[2] < bb[2] || p[0] > bb[3] || p[1] > bb[4] || p[2] > bb[5]) continue;
+      inside = winding_number(soup, body_faces[b], p) > 0.5;
+    }
+    if (inside) { ++out.pieces_inside; continue; }
+    const int s0 = start[r];
+    out.kept[s0] = 1;
+    stack.push_back(s0);
+    while (!stack.empty()) {
+      const int s = stack.back();
+      stack.pop_back();
+      for (int z = 0; z < 3; ++z) {
+        const int side = across(s, z);
+        out.partner[3 * s + z] = side;
+        const int t = side / 3, y = side % 3;
+        if (sub[t][y] != sub[s][(z + 1) % 3]) ++out.orientation_conflicts;
+        if (!out.kept[t]) { out.kept[t] = 1; stack.push_back(t); }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace mr::surface_union

@@ -1,0 +1,18 @@
+// Surface improvement after the cut: faces with a small angle are removed by
+// collapsing their shortest edge into one of its ends, when no face normal flips,
+// the worst angle around improves, the intersection lines keep their shape and the
+// surface moves less than a bound.
+#pragma once
+
+#include "union/surface_union.h"
+
+namespace mr::surface_union {
+
+/// Collapses slivers of `r` in place (vertices, faces, line_edge, compacted);
+/// returns the number of collapses.
+int collapse_slivers(Result& r, double sliver_angle_deg, double max_deviation);
+
+/// Smallest face angle of a mesh, degrees.
+double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vector<std::array<int, 3>>& f);
+
+}  // namespace mr::surface_union
