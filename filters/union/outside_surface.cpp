@@ -92,7 +92,9 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
   }
 
   // The visible neighbour across side 3*s+z.
-  auto across = [&](int s, int z) -> int {
+  // With `inward`, turns the other way among kept faces only (the solid-side
+  // neighbour, which keeps bodies that merely touch along an edge apart).
+  auto across = [&](int s, int z, bool inward) -> int {
     const int g = group_of[3 * s + z];
     const int b = group_begin[g], e = group_begin[g + 1];
     if (e - b == 2) return he[b].side == 3 * s + z ? he[b + 1].side : he[b].side;
@@ -112,8 +114,9 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
       const int side = he[i].side;
       if (side == 3 * s + z) continue;
       const int t = side / 3, y = side % 3;
+      if (inward && !out.kept[t]) continue;
       const V3 rg = perp(P(sub[t][(y + 2) % 3]));
-      double a = std::atan2(dot(rg, nf), dot(rg, rf));
+      double a = std::atan2((inward ? -1 : 1) * dot(rg, nf), dot(rg, rf));
       if (a <= 0) a += 2 * 3.14159265358979323846;
       if (a < best_angle) { best_angle = a; best = side; }
     }
@@ -173,12 +176,23 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
       const int s = stack.back();
       stack.pop_back();
       for (int z = 0; z < 3; ++z) {
-        const int side = across(s, z);
+        const int side = across(s, z, false);
         out.partner[3 * s + z] = side;
         const int t = side / 3, y = side % 3;
         if (sub[t][y] != sub[s][(z + 1) % 3]) ++out.orientation_conflicts;
         if (!out.kept[t]) { out.kept[t] = 1; stack.push_back(t); }
       }
+    }
+  }
+  // Shells: at edges where more than two kept faces meet, pair each with its
+  // solid-side neighbour instead.
+  for (int s = 0; s < ns; ++s) {
+    if (!out.kept[s]) continue;
+    for (int z = 0; z < 3; ++z) {
+      const int g = group_of[3 * s + z];
+      int kept_here = 0;
+      for (int i = group_begin[g]; i < group_begin[g + 1]; ++i) kept_here += out.kept[he[i].side / 3];
+      if (kept_here > 2) out.partner[3 * s + z] = across(s, z, true);
     }
   }
   return out;

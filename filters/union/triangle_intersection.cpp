@@ -96,15 +96,18 @@ namespace {
 bool PairIntersector::coplanar(int f, int g, std::unordered_map<int, FaceConstraints>& cf) {
   const auto& T = soup_.face[f];
   const auto& X = soup_.face[g];
-  const QPoint* qt[3] = {&points_[vertex_point_[T[0]]], &points_[vertex_point_[T[1]]], &points_[vertex_point_[T[2]]]};
-  const QPoint* qx[3] = {&points_[vertex_point_[X[0]]], &points_[vertex_point_[X[1]]], &points_[vertex_point_[X[2]]]};
+  // Copies: inserting new points may move the table's storage.
+  const QPoint pt[3] = {points_[vertex_point_[T[0]]], points_[vertex_point_[T[1]]], points_[vertex_point_[T[2]]]};
+  const QPoint px[3] = {points_[vertex_point_[X[0]]], points_[vertex_point_[X[1]]], points_[vertex_point_[X[2]]]};
+  const QPoint* qt[3] = {&pt[0], &pt[1], &pt[2]};
+  const QPoint* qx[3] = {&px[0], &px[1], &px[2]};
   const Projection pr = face_projection(*qt[0], *qt[1], *qt[2]);
   const int sign_x = orient2d(*qx[0], *qx[1], *qx[2], pr.i, pr.j);
   if (sign_x == 0) return false;  // degenerate face, rejected earlier
   // Clips segment (a, b) against triangle C (orientation sc); appends the part inside.
   auto clip = [&](int va, int vb, const QPoint* const C[3], int sc, FaceConstraints& out) {
-    const QPoint& a = points_[vertex_point_[va]];
-    const QPoint& b = points_[vertex_point_[vb]];
+    const QPoint a = points_[vertex_point_[va]];
+    const QPoint b = points_[vertex_point_[vb]];
     mpq_class t0 = 0, t1 = 1;
     bool moved0 = false, moved1 = false;
     for (int e = 0; e < 3; ++e) {
