@@ -2,23 +2,210 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
+#include <cstdio>
+#include <cstdlib>
 
 namespace mr::surface_union {
 
+namespace {
+
+using V3 = std::array<double, 3>;
+constexpr double kPi = 3.14159265358979323846;
+
+V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+
+double angle(const V3& o, const V3& p, const V3& q) {
+  const V3 a = sub3(p, o), b = sub3(q, o);
+  return std::atan2(norm(cross(a, b)), dot(a, b));
+}
+
+double face_min_angle(const V3& a, const V3& b, const V3& c) {
+  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+}
+
+class Collapser {
+public:
+  Collapser(Result& r, double max_dev) : r_(r), alive_(r.faces.size(), 1), vf_(r.vertices.size()) {
+    for (int f = 0; f < int(r.faces.size()); ++f)
+      for (int v : r.faces[f]) vf_[v].push_back(f);
+    V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
+    for (const auto& p : r.vertices)
+      for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }
+    max_dev_ = max_dev * norm(sub3(hi, lo));
+    // Line edges and degrees.
+    for (int f = 0; f < int(r.faces.size()); ++f)
+      for (int z = 0; z < 3; ++z)
+        if (r.line_edge[f][z]) line_.insert(ekey(r.faces[f][z], r.faces[f][(z + 1) % 3]));
+    line_degree_.assign(r.vertices.size(), 0);
+    for (const auto& e : line_) { ++line_degree_[e.first]; ++line_degree_[e.second]; }
+  }
+
+  int run(double threshold_rad);
+  void compact();
+
+private:
+  static std::pair<int, int> ekey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+  V3 P(int v) const { return r_.vertices[v]; }
+  double min_angle(int f) const { return face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2])); }
+  bool try_collapse(int v, int w);  // moves v onto w
+  std::vector<int> live_faces(int v) const {
+    std::vector<int> out;
+    for (int f : vf_[v])
+      if (alive_[f]) out.push_back(f);
+    return out;
+  }
+
+  Result& r_;
+  std::vector<char> alive_;
+  std::vector<std::vector<int>> vf_;
+  std::set<std::pair<int, int>> line_;
+  std::vector<int> line_degree_;
+  double max_dev_ = 0;
+};
+
+static int dbg[8];
+bool Collapser::try_collapse(int v, int w) {
+  // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2.
+  const bool vw_line = line_.count(ekey(v, w)) > 0;
+  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) { ++dbg[0]; return false; }
+  const std::vector<int> fv = live_faces(v), fw = live_faces(w);
+  // Link condition: v and w share exactly the two opposite vertices of their two faces.
+  std::set<int> nv, nw;
+  for (int f : fv)
+    for (int x : r_.faces[f]) nv.insert(x);
+  for (int f : fw)
+    for (int x : r_.faces[f]) nw.insert(x);
+  int shared_faces = 0;
+  for (int f : fv)
+    if (std::find(r_.faces[f].begin(), r_.faces[f].end(), w) != r_.faces[f].end()) ++shared_faces;
+  if (shared_faces != 2) { ++dbg[1]; return false; }
+  int common = 0;
+  for (int x : nv)
+    if (x != v && x != w && nw.count(x)) ++common;
+  if (common != 2) { ++dbg[2]; return false; }
+  // Geometry: no flipped or degenerate face, bounded deviation, better worst angle.
+  double before = 1e300, after = 1e300;
+  for (int f : fv) before = std::min(before, min_angle(f));
+  for (int f : fv) {
+    const auto& t = r_.faces[f];
+    if (std::find(t.begin(), t.end(), w) != t.end()) continue;
+    V3 q[3];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == v ? P(w) : P(t[z]);
+    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+    const double ln = norm(n_new), lo = norm(n_old);
+    if (!(ln > 0) || dot(n_old, n_new) <= 0.5 * lo * ln) { ++dbg[3]; return false; }
+    if (std::fabs(dot(sub3(P(v), q[0]), n_new)) / ln > max_dev_) { ++dbg[4]; return false; }
+    after = std::min(after, face_min_angle(q[0], q[1], q[2]));
+  }
+  if (!(after > before)) { ++dbg[5]; return false; }
+  for (int f : fv) {
+    auto& t = r_.faces[f];
+    if (std::find(t.begin(), t.end(), w) != t.end()) {
+      alive_[f] = 0;
+      continue;
+    }
+    for (int& x : t)
+      if (x == v) x = w;
+    vf_[w].push_back(f);
+  }
+  vf_[v].clear();
+  // Line edges of v now start at w.
+  if (line_degree_[v] > 0) {
+    std::vector<std::pair<int, int>> moved;
+    for (auto it = line_.begin(); it != line_.end();) {
+      if (it->first == v || it->second == v) {
+        const int other = it->first == v ? it->second : it->first;
+        if (other != w) moved.push_back(ekey(other, w));
+        --line_degree_[it->first];
+        --line_degree_[it->second];
+        it = line_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    for (const auto& e : moved)
+      if (line_.insert(e).second) { ++line_degree_[e.first]; ++line_degree_[e.second]; }
+  }
+  return true;
+}
+
+int Collapser::run(double threshold) {
+  int collapsed = 0;
+  for (int pass = 0; pass < 10; ++pass) {
+    std::vector<std::pair<double, int>> bad;
+    for (int f = 0; f < int(r_.faces.size()); ++f)
+      if (alive_[f]) {
+        const double a = min_angle(f);
+        if (a < threshold) bad.push_back({a, f});
+      }
+    std::sort(bad.begin(), bad.end());
+    int done = 0;
+    for (const auto& [a0, f] : bad) {
+      if (!alive_[f] || min_angle(f) >= threshold) continue;
+      const auto t = r_.faces[f];
+      // Edges by length, shortest first; each tried in both directions.
+      std::array<std::pair<double, int>, 3> edges;
+      for (int z = 0; z < 3; ++z) edges[z] = {norm(sub3(P(t[z]), P(t[(z + 1) % 3]))), z};
+      std::sort(edges.begin(), edges.end());
+      for (const auto& [len, z] : edges) {
+        const int a = t[z], b = t[(z + 1) % 3];
+        if (try_collapse(a, b) || try_collapse(b, a)) { ++done; break; }
+      }
+    }
+    collapsed += done;
+    if (done == 0) break;
+  }
+  return collapsed;
+}
+
+void Collapser::compact() {
+  std::vector<int> index(r_.vertices.size(), -1);
+  std::vector<V3> vertices;
+  std::vector<std::array<int, 3>> faces;
+  for (int f = 0; f < int(r_.faces.size()); ++f) {
+    if (!alive_[f]) continue;
+    std::array<int, 3> t;
+    for (int z = 0; z < 3; ++z) {
+      const int v = r_.faces[f][z];
+      if (index[v] < 0) { index[v] = int(vertices.size()); vertices.push_back(r_.vertices[v]); }
+      t[z] = index[v];
+    }
+    faces.push_back(t);
+  }
+  std::vector<std::array<bool, 3>> line(faces.size());
+  size_t k = 0;
+  for (int f = 0; f < int(r_.faces.size()); ++f) {
+    if (!alive_[f]) continue;
+    for (int z = 0; z < 3; ++z) line[k][z] = line_.count(ekey(r_.faces[f][z], r_.faces[f][(z + 1) % 3])) > 0;
+    ++k;
+  }
+  r_.vertices = std::move(vertices);
+  r_.faces = std::move(faces);
+  r_.line_edge = std::move(line);
+}
+
+}  // namespace
+
 double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vector<std::array<int, 3>>& f) {
   double best = 180;
-  for (const auto& t : f)
-    for (int z = 0; z < 3; ++z) {
-      const auto &o = v[t[z]], &p = v[t[(z + 1) % 3]], &q = v[t[(z + 2) % 3]];
-      double a[3], b[3];
-      for (int k = 0; k < 3; ++k) { a[k] = p[k] - o[k]; b[k] = q[k] - o[k]; }
-      const double dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-      const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
-      best = std::min(best, std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot) * 180 / 3.14159265358979323846);
-    }
+  for (const auto& t : f) best = std::min(best, face_min_angle(v[t[0]], v[t[1]], v[t[2]]) * 180 / kPi);
   return best;
 }
 
-int collapse_slivers(Result&, double, double) { return 0; }
+int collapse_slivers(Result& r, double sliver_angle_deg, double max_deviation) {
+  Collapser c(r, max_deviation);
+  const int n = c.run(sliver_angle_deg * kPi / 180);
+  c.compact();
+  if (getenv("UNION_DEBUG")) fprintf(stderr, "dbg %d %d %d %d %d %d\n", dbg[0], dbg[1], dbg[2], dbg[3], dbg[4], dbg[5]);
+  return n;
+}
 
 }  // namespace mr::surface_union
