@@ -177,6 +177,10 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
       stack.pop_back();
       for (int z = 0; z < 3; ++z) {
         const int side = across(s, z, false);
+        if (side < 0) {  // an edge with one face: the arrangement is not closed here
+          ++out.open_sides;
+          continue;
+        }
         out.partner[3 * s + z] = side;
         const int t = side / 3, y = side % 3;
         if (sub[t][y] != sub[s][(z + 1) % 3]) ++out.orientation_conflicts;
@@ -192,7 +196,10 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
       const int g = group_of[3 * s + z];
       int kept_here = 0;
       for (int i = group_begin[g]; i < group_begin[g + 1]; ++i) kept_here += out.kept[he[i].side / 3];
-      if (kept_here > 2) out.partner[3 * s + z] = across(s, z, true);
+      if (kept_here > 2) {
+        const int side = across(s, z, true);
+        if (side >= 0) out.partner[3 * s + z] = side;
+      }
     }
   }
   return out;

@@ -19,6 +19,7 @@ struct Classification {
   int pieces = 0;                ///< edge-connected pieces of the arrangement
   int pieces_inside = 0;         ///< pieces enclosed by another body (removed whole)
   int orientation_conflicts = 0; ///< fill steps into a face not oriented against the current one
+  int open_sides = 0;            ///< kept face sides with no face across (must stay 0)
 };
 
 /// \param sub sub-faces (point indices), \param sub_body their bodies, \param dropped

@@ -55,6 +55,7 @@ private:
   V3 P(int v) const { return r_.vertices[v]; }
   double min_angle(int f) const { return face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2])); }
   bool try_collapse(int v, int w);  // moves v onto w
+  bool try_flip(int f, int z);      // flips side z of face f
   std::vector<int> live_faces(int v) const {
     std::vector<int> out;
     for (int f : vf_[v])
@@ -68,6 +69,9 @@ private:
   std::set<std::pair<int, int>> line_;
   std::vector<int> line_degree_;
   double max_dev_ = 0;
+
+public:
+  int collapses_ = 0, flips_ = 0;
 };
 
 static int dbg[8];
@@ -137,8 +141,41 @@ bool Collapser::try_collapse(int v, int w) {
   return true;
 }
 
+bool Collapser::try_flip(int f, int z) {
+  const int u = r_.faces[f][z], v = r_.faces[f][(z + 1) % 3], c = r_.faces[f][(z + 2) % 3];
+  if (line_.count(ekey(u, v))) return false;
+  int g = -1;
+  for (int h : vf_[v])
+    if (alive_[h] && h != f)
+      for (int y = 0; y < 3; ++y)
+        if (r_.faces[h][y] == v && r_.faces[h][(y + 1) % 3] == u) g = h;
+  if (g < 0) return false;
+  int d = -1;
+  for (int x : r_.faces[g])
+    if (x != u && x != v) d = x;
+  for (int h : vf_[c])  // the new edge must not exist already
+    if (alive_[h] && std::find(r_.faces[h].begin(), r_.faces[h].end(), d) != r_.faces[h].end()) return false;
+  const V3 n_f = cross(sub3(P(v), P(u)), sub3(P(c), P(u)));
+  const V3 n_g = cross(sub3(P(u), P(v)), sub3(P(d), P(v)));
+  const V3 n1 = cross(sub3(P(d), P(u)), sub3(P(c), P(u)));
+  const V3 n2 = cross(sub3(P(v), P(d)), sub3(P(c), P(d)));
+  for (const V3& n : {n1, n2})
+    if (!(norm(n) > 0) || dot(n, n_f) <= 0 || dot(n, n_g) <= 0) return false;
+  // The four points must be (nearly) coplanar: d's distance from the plane of f.
+  if (std::fabs(dot(sub3(P(d), P(u)), n_f)) / norm(n_f) > max_dev_) return false;
+  const double before = std::min(min_angle(f), min_angle(g));
+  const double after = std::min(face_min_angle(P(u), P(d), P(c)), face_min_angle(P(d), P(v), P(c)));
+  if (!(after > before)) return false;
+  r_.faces[f] = {u, d, c};
+  r_.faces[g] = {d, v, c};
+  vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
+  vf_[v].erase(std::remove(vf_[v].begin(), vf_[v].end(), f), vf_[v].end());
+  vf_[c].push_back(g);
+  vf_[d].push_back(f);
+  return true;
+}
+
 int Collapser::run(double threshold) {
-  int collapsed = 0;
   for (int pass = 0; pass < 10; ++pass) {
     std::vector<std::pair<double, int>> bad;
     for (int f = 0; f < int(r_.faces.size()); ++f)
@@ -151,19 +188,24 @@ int Collapser::run(double threshold) {
     for (const auto& [a0, f] : bad) {
       if (!alive_[f] || min_angle(f) >= threshold) continue;
       const auto t = r_.faces[f];
-      // Edges by length, shortest first; each tried in both directions.
+      // Edges by length, shortest first; each tried in both directions. A cap (one
+      // large angle) is first flipped across its longest edge, which moves nothing.
       std::array<std::pair<double, int>, 3> edges;
       for (int z = 0; z < 3; ++z) edges[z] = {norm(sub3(P(t[z]), P(t[(z + 1) % 3]))), z};
       std::sort(edges.begin(), edges.end());
+      const bool cap = angle(P(t[(edges[2].second + 2) % 3]), P(t[edges[2].second]), P(t[(edges[2].second + 1) % 3])) >
+                       2 * kPi / 3;
+      if (cap && try_flip(f, edges[2].second)) { ++done; ++flips_; continue; }
+      bool ok = false;
       for (const auto& [len, z] : edges) {
         const int a = t[z], b = t[(z + 1) % 3];
-        if (try_collapse(a, b) || try_collapse(b, a)) { ++done; break; }
+        if (try_collapse(a, b) || try_collapse(b, a)) { ++done; ++collapses_; ok = true; break; }
       }
+      if (!ok && !cap && try_flip(f, edges[2].second)) { ++done; ++flips_; }
     }
-    collapsed += done;
     if (done == 0) break;
   }
-  return collapsed;
+  return collapses_;
 }
 
 void Collapser::compact() {

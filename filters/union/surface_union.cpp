@@ -161,12 +161,20 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
       dropped.push_back(drop);
     }
   }
-  r.intersection_points = pts.size() - input_points;
+  {  // Constructed points that ended up as vertices (some sections built on the way are unused).
+    std::vector<char> used(pts.size(), 0);
+    for (const auto& t : sub)
+      for (int id : t) used[id] = 1;
+    for (int id = input_points; id < pts.size(); ++id) r.intersection_points += used[id];
+  }
   r.time_retriangulate_ms = ms_since(t);
 
   // 4. Outside surface.
   t = Clock::now();
   const Classification cl = classify_outside(pts, sub, sub_body, dropped, soup);
+  if (cl.open_sides > 0)
+    throw AlgorithmFailure("the cut surface is not closed at " + std::to_string(cl.open_sides) +
+                           " edges (internal error; please report the input)");
   // Output vertices: one per fan of kept faces around a point (so bodies touching
   // along an edge or at a point give a manifold result).
   const int ns = int(sub.size());
@@ -176,6 +184,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
     if (!cl.kept[s]) continue;
     for (int z = 0; z < 3; ++z) {
       const int side = cl.partner[3 * s + z];
+      if (side < 0) continue;
       const int u = side / 3, y = side % 3;
       // The edge's start corner of s meets the end corner of the partner, and vice versa.
       const int a = find(uf, 3 * s + z), b = find(uf, 3 * u + (y + 1) % 3);
