@@ -3,8 +3,6 @@
 #include "common/errors.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <deque>
 #include <unordered_map>
@@ -174,11 +172,6 @@ void FaceTriangulator::insert_point(int p) {
       set_tri(new_tri(), p, a, d);
     }
     return;
-  }
-  if (getenv("UNION_DEBUG")) {
-    for (int k = 0; k < 3; ++k) fprintf(stderr, "corner %g %g %g\n", P(k).d[0], P(k).d[1], P(k).d[2]);
-    fprintf(stderr, "point %g %g %g proj %d %d\n", P(p).d[0], P(p).d[1], P(p).d[2], pr_.i, pr_.j);
-    for (auto& t : tri_) fprintf(stderr, "tri %d %d %d\n", t[0], t[1], t[2]);
   }
   throw AlgorithmFailure("union: an intersection point fell outside its face (internal error)");
 }

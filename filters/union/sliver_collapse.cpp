@@ -4,8 +4,6 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <cstdio>
-#include <cstdlib>
 
 namespace mr::surface_union {
 
@@ -32,7 +30,8 @@ double face_min_angle(const V3& a, const V3& b, const V3& c) {
 
 class Collapser {
 public:
-  Collapser(Result& r, double max_dev) : r_(r), alive_(r.faces.size(), 1), vf_(r.vertices.size()) {
+  Collapser(Result& r, const std::vector<char>& cut, double max_dev)
+      : r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()) {
     for (int f = 0; f < int(r.faces.size()); ++f)
       for (int v : r.faces[f]) vf_[v].push_back(f);
     V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
@@ -65,6 +64,7 @@ private:
 
   Result& r_;
   std::vector<char> alive_;
+  std::vector<char> cut_;
   std::vector<std::vector<int>> vf_;
   std::set<std::pair<int, int>> line_;
   std::vector<int> line_degree_;
@@ -74,11 +74,10 @@ public:
   int collapses_ = 0, flips_ = 0;
 };
 
-static int dbg[8];
 bool Collapser::try_collapse(int v, int w) {
   // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2.
   const bool vw_line = line_.count(ekey(v, w)) > 0;
-  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) { ++dbg[0]; return false; }
+  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) return false;
   const std::vector<int> fv = live_faces(v), fw = live_faces(w);
   // Link condition: v and w share exactly the two opposite vertices of their two faces.
   std::set<int> nv, nw;
@@ -89,11 +88,11 @@ bool Collapser::try_collapse(int v, int w) {
   int shared_faces = 0;
   for (int f : fv)
     if (std::find(r_.faces[f].begin(), r_.faces[f].end(), w) != r_.faces[f].end()) ++shared_faces;
-  if (shared_faces != 2) { ++dbg[1]; return false; }
+  if (shared_faces != 2) return false;
   int common = 0;
   for (int x : nv)
     if (x != v && x != w && nw.count(x)) ++common;
-  if (common != 2) { ++dbg[2]; return false; }
+  if (common != 2) return false;
   // Geometry: no flipped or degenerate face, bounded deviation, better worst angle.
   double before = 1e300, after = 1e300;
   for (int f : fv) before = std::min(before, min_angle(f));
@@ -105,11 +104,11 @@ bool Collapser::try_collapse(int v, int w) {
     const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
     const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
     const double ln = norm(n_new), lo = norm(n_old);
-    if (!(ln > 0) || dot(n_old, n_new) <= 0.5 * lo * ln) { ++dbg[3]; return false; }
-    if (std::fabs(dot(sub3(P(v), q[0]), n_new)) / ln > max_dev_) { ++dbg[4]; return false; }
+    if (!(ln > 0) || dot(n_old, n_new) <= 0.5 * lo * ln) return false;
+    if (std::fabs(dot(sub3(P(v), q[0]), n_new)) / ln > max_dev_) return false;
     after = std::min(after, face_min_angle(q[0], q[1], q[2]));
   }
-  if (!(after > before)) { ++dbg[5]; return false; }
+  if (!(after > before)) return false;
   for (int f : fv) {
     auto& t = r_.faces[f];
     if (std::find(t.begin(), t.end(), w) != t.end()) {
@@ -179,7 +178,7 @@ int Collapser::run(double threshold) {
   for (int pass = 0; pass < 10; ++pass) {
     std::vector<std::pair<double, int>> bad;
     for (int f = 0; f < int(r_.faces.size()); ++f)
-      if (alive_[f]) {
+      if (alive_[f] && cut_[f]) {
         const double a = min_angle(f);
         if (a < threshold) bad.push_back({a, f});
       }
@@ -242,11 +241,10 @@ double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vec
   return best;
 }
 
-int collapse_slivers(Result& r, double sliver_angle_deg, double max_deviation) {
-  Collapser c(r, max_deviation);
+int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation) {
+  Collapser c(r, cut, max_deviation);
   const int n = c.run(sliver_angle_deg * kPi / 180);
   c.compact();
-  if (getenv("UNION_DEBUG")) fprintf(stderr, "dbg %d %d %d %d %d %d\n", dbg[0], dbg[1], dbg[2], dbg[3], dbg[4], dbg[5]);
   return n;
 }
 

@@ -9,8 +9,9 @@
 namespace mr::surface_union {
 
 /// Collapses slivers of `r` in place (vertices, faces, line_edge, compacted);
-/// returns the number of collapses.
-int collapse_slivers(Result& r, double sliver_angle_deg, double max_deviation);
+/// returns the number of collapses. Only faces with `cut[f]` (made by the cut) are
+/// treated; slivers the input already had are left as they are.
+int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation);
 
 /// Smallest face angle of a mesh, degrees.
 double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vector<std::array<int, 3>>& f);

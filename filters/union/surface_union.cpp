@@ -128,6 +128,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   t = Clock::now();
   std::vector<std::array<int, 3>> sub;
   std::vector<int> sub_body, sub_face;
+  std::vector<char> sub_cut;  // from a face that was cut
   sub.reserve(soup.face.size() + 8 * cf.size());
   std::vector<char> dropped;
   for (int f = 0; f < int(soup.face.size()); ++f) {
@@ -143,6 +144,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
     for (size_t s = first; s < sub.size(); ++s) {
       sub_body.push_back(soup.body[f]);
       sub_face.push_back(f);
+      sub_cut.push_back(it != cf.end());
       char drop = 0;
       if (it != cf.end() && !it->second.coplanar.empty()) {
         const Projection pr = face_projection(pts[corners[0]], pts[corners[1]], pts[corners[2]]);
@@ -194,6 +196,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
     }
   }
   std::vector<int> vertex_of(3 * size_t(ns), -1);
+  std::vector<char> cut;
   for (int s = 0; s < ns; ++s) {
     if (!cl.kept[s]) continue;
     std::array<int, 3> face;
@@ -208,6 +211,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
       line[z] = cl.line_edge[3 * s + z] != 0;
     }
     r.faces.push_back(face);
+    cut.push_back(sub_cut[s]);
     r.line_edge.push_back(line);
   }
   r.faces_removed = ns - int(r.faces.size());
@@ -215,7 +219,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
 
   // 5. Slivers.
   t = Clock::now();
-  if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, params.sliver_angle_deg, params.sliver_max_deviation);
+  if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation);
   r.time_slivers_ms = ms_since(t);
   for (const auto& l : r.line_edge) r.intersection_edges += int(l[0]) + int(l[1]) + int(l[2]);
   r.intersection_edges /= 2;

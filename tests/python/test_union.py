@@ -12,7 +12,7 @@ import numpy as np
 import pymeshlab
 import pytest
 
-from conftest import assert_unchanged, load, raises_on, snapshot
+from conftest import assert_unchanged, load, raises_on, shared_mesh, snapshot
 
 manifold3d = pytest.importorskip("manifold3d")
 
@@ -133,7 +133,7 @@ def multicomponent(name):
 @pytest.mark.parametrize("sliver_angle,rtol", [(0.0, EXACT_VOLUME_RTOL), (10.0, IMPROVED_VOLUME_RTOL)])
 def test_balls(sliver_angle, rtol):
     ms = load("multicomponent/ballA.off")
-    ms.load_new_mesh(str(load.__globals__["shared_mesh"]("multicomponent/ballB.off")))
+    ms.load_new_mesh(str(shared_mesh("multicomponent/ballB.off")))
     ref = reference([ms.mesh(0), ms.mesh(1)])
     r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle, create_lines_layer=True)
     assert (r["bodies"], r["intersecting_pairs"], r["intersection_lines"]) == (2, 1, 1)
@@ -331,3 +331,49 @@ def test_self_intersection_check_sees_real_intersections():
     ms = cube_set([(0, 0, 0), (0.5, 0.3, 0.2)])
     ms.generate_by_merging_visible_meshes()
     assert self_intersecting_faces(ms.current_mesh()) > 0
+
+
+def test_pipeline_union_then_regrid_keeps_the_line_and_reaches_30_degrees():
+    from meshregrid import pipeline_union
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(shared_mesh("multicomponent/ballA.off")))
+    ms.load_new_mesh(str(shared_mesh("multicomponent/ballB.off")))
+    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
+    regrid = r["remesh"]
+    assert regrid["unmeshed_sides"] == 0
+    assert regrid["lines"] >= r["intersection_lines"] == 1
+    assert regrid["min_angle"] >= 30.0
+    m = ms.current_mesh()
+    assert m.face_number() == regrid["faces"]
+    assert angles(m).min() >= 30.0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
+
+def test_cli_union_writes_union_and_lines(tmp_path):
+    import json
+    import subprocess
+    import sys
+    out, lines = tmp_path / "u.ply", tmp_path / "l.obj"
+    a = shared_mesh("multicomponent/ballA.off")
+    b = shared_mesh("multicomponent/ballB.off")
+    proc = subprocess.run([sys.executable, "-m", "meshregrid", "union", str(a), str(b), str(out), "--lines", str(lines)],
+                          capture_output=True, text=True, check=True)
+    result = json.loads(proc.stdout)
+    assert result["bodies"] == 2 and result["intersection_lines"] == 1
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(out))
+    assert ms.current_mesh().face_number() == result["faces"]
+    records = lines.read_text().split("\n")
+    assert sum(r.startswith("l ") for r in records) == result["intersection_edges"]
+
+
+def test_cli_union_components_of_one_file(tmp_path):
+    import json
+    import subprocess
+    import sys
+    out = tmp_path / "rabbit.ply"
+    src = shared_mesh("multicomponent/rabbit.obj")
+    proc = subprocess.run([sys.executable, "-m", "meshregrid", "union", str(src), str(out), "--components"],
+                          capture_output=True, text=True, check=True)
+    assert json.loads(proc.stdout)["bodies"] == 9
