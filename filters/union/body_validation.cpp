@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <vector>
 
 namespace mr::surface_union {
 
@@ -42,19 +42,25 @@ int validate_bodies(std::vector<Body>& bodies) {
     }
     // Directed edge counts: closed, manifold and consistently oriented means each
     // undirected edge is used exactly once in each direction.
-    std::map<std::pair<int, int>, std::array<int, 2>> edges;
+    // Half-edges as (min, max, forward) sorted, so each undirected edge is one run.
+    std::vector<std::array<int, 3>> half;
+    half.reserve(3 * b.faces.size());
     for (const auto& f : b.faces)
       for (int z = 0; z < 3; ++z) {
         const int u = f[z], v = f[(z + 1) % 3];
-        auto& c = edges[{std::min(u, v), std::max(u, v)}];
-        ++c[u < v ? 0 : 1];
+        half.push_back({std::min(u, v), std::max(u, v), u < v ? 1 : 0});
       }
+    std::sort(half.begin(), half.end());
     int open = 0, nonmanifold = 0, misoriented = 0;
-    for (const auto& [e, c] : edges) {
-      const int n = c[0] + c[1];
+    for (size_t i = 0; i < half.size();) {
+      size_t j = i;
+      int forward = 0;
+      while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) forward += half[j++][2];
+      const size_t n = j - i;
       if (n == 1) ++open;
       else if (n > 2) ++nonmanifold;
-      else if (c[0] != 1) ++misoriented;
+      else if (forward != 1) ++misoriented;
+      i = j;
     }
     if (open) throw TopologyError(name + " is not closed (" + std::to_string(open) +
                                   " boundary edges): close its holes first (Remeshing > Close Holes)");

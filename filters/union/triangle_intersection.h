@@ -29,6 +29,7 @@ private:
   int edge_plane_point(int a, int b, int face);
   void plane_section(int f, const int sign[3], int other, std::vector<int>& out);
   bool coplanar(int f, int g, std::unordered_map<int, FaceConstraints>& cf);
+  bool sections_surely_apart(int f, const int* st, int g, const int* sx) const;
   const double* vp(int v) const { return soup_.vertex[v].data(); }
 
   const Soup& soup_;
