@@ -1,6 +1,8 @@
 #include "union/exact.h"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <utility>
 
 namespace mr::surface_union {
@@ -80,6 +82,66 @@ int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
   return sign_of(orient2d_exact(a, b, c, i, j));
 }
 
+namespace {
+
+/// Integers m_i with values[i] = m_i * 2^e for one common exponent e (returned).
+int scale_to_integers(const double* const* values, int n, mpz_class* out) {
+  int emin = std::numeric_limits<int>::max();
+  std::int64_t mant[16];
+  int expo[16];
+  for (int i = 0; i < n; ++i) {
+    const double v = *values[i];
+    if (v == 0) { mant[i] = 0; expo[i] = 0; continue; }
+    int e;
+    const double f = std::frexp(v, &e);  // v = f 2^e, 0.5 <= |f| < 1
+    mant[i] = std::int64_t(std::ldexp(f, 53));
+    expo[i] = e - 53;
+    emin = std::min(emin, expo[i]);
+  }
+  if (emin == std::numeric_limits<int>::max()) emin = 0;
+  for (int i = 0; i < n; ++i) {
+    out[i] = mpz_class(static_cast<long>(mant[i]));
+    if (mant[i] != 0) out[i] <<= (expo[i] - emin);
+  }
+  return emin;
+}
+
+}  // namespace
+
+QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2) {
+  const double* vals[15];
+  for (int k = 0; k < 3; ++k) {
+    vals[k] = &a[k];
+    vals[3 + k] = &b[k];
+    vals[6 + k] = &f0[k];
+    vals[9 + k] = &f1[k];
+    vals[12 + k] = &f2[k];
+  }
+  mpz_class z[15];
+  const int e = scale_to_integers(vals, 15, z);
+  const mpz_class *A = z, *B = z + 3, *F0 = z + 6, *F1 = z + 9, *F2 = z + 12;
+  mpz_class u[3], v[3], ra[3], rb[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = F1[k] - F0[k];
+    v[k] = F2[k] - F0[k];
+    ra[k] = A[k] - F0[k];
+    rb[k] = B[k] - F0[k];
+  }
+  const mpz_class n0 = u[1] * v[2] - u[2] * v[1], n1 = u[2] * v[0] - u[0] * v[2], n2 = u[0] * v[1] - u[1] * v[0];
+  const mpz_class oa = n0 * ra[0] + n1 * ra[1] + n2 * ra[2];
+  const mpz_class ob = n0 * rb[0] + n1 * rb[1] + n2 * rb[2];
+  mpz_class den = oa - ob;
+  mpq_class c[3];
+  for (int k = 0; k < 3; ++k) {
+    mpz_class num = oa * B[k] - ob * A[k];
+    mpz_class d = den;
+    if (e >= 0) num <<= e;
+    else d <<= -e;
+    c[k] = mpq_class(num, d);
+  }
+  return make_point(c[0], c[1], c[2]);  // canonicalizes
+}
+
 QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t) {
   return make_point(a.q[0] + t * (b.q[0] - a.q[0]), a.q[1] + t * (b.q[1] - a.q[1]), a.q[2] + t * (b.q[2] - a.q[2]));
 }
@@ -104,6 +166,11 @@ Projection face_projection(const QPoint& qa, const QPoint& qb, const QPoint& qc)
   return p;
 }
 
-int compare(const QPoint& a, const QPoint& b, int axis) { return cmp(a.q[axis], b.q[axis]); }
+int compare(const QPoint& a, const QPoint& b, int axis) {
+  // The doubles are the rationals truncated towards zero, a monotone map: different doubles decide.
+  if (a.d[axis] < b.d[axis]) return -1;
+  if (a.d[axis] > b.d[axis]) return 1;
+  return cmp(a.q[axis], b.q[axis]);
+}
 
 }  // namespace mr::surface_union

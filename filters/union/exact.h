@@ -9,7 +9,7 @@
 
 namespace mr::surface_union {
 
-/// A point with exact rational coordinates and their nearest-below double
+/// A point with exact rational coordinates and their truncated (towards zero) double
 /// approximation (the same rational always gives the same doubles).
 struct QPoint {
   std::array<mpq_class, 3> q;
@@ -33,6 +33,11 @@ int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
 
 /// det[b-a, c-a] on axes (i, j), exactly.
 mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
+
+/// The point where segment (a, b) crosses the plane of (f0, f1, f2), exactly; a and b
+/// must lie strictly on opposite sides. Computed with integers (all inputs scaled to
+/// one power of two), so only the final coordinates are reduced.
+QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2);
 
 /// a + t (b - a), exactly.
 QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t);

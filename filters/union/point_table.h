@@ -26,7 +26,7 @@ private:
     size_t operator()(const Key& k) const;
   };
   std::vector<QPoint> points_;
-  // Doubles nearest below the rationals: equal points have equal keys; the rare
+  // Truncated doubles of the rationals: equal points have equal keys; the rare
   // distinct points with one key are told apart exactly.
   std::unordered_map<Key, std::vector<int>, KeyHash> index_;
 };

@@ -120,19 +120,17 @@ bool Collapser::try_collapse(int v, int w) {
     vf_[w].push_back(f);
   }
   vf_[v].clear();
-  // Line edges of v now start at w.
+  // Line edges of v now start at w (v's neighbours are the vertices of its old faces).
   if (line_degree_[v] > 0) {
     std::vector<std::pair<int, int>> moved;
-    for (auto it = line_.begin(); it != line_.end();) {
-      if (it->first == v || it->second == v) {
-        const int other = it->first == v ? it->second : it->first;
-        if (other != w) moved.push_back(ekey(other, w));
-        --line_degree_[it->first];
-        --line_degree_[it->second];
-        it = line_.erase(it);
-      } else {
-        ++it;
-      }
+    for (int x : nv) {
+      if (x == v) continue;
+      auto it = line_.find(ekey(v, x));
+      if (it == line_.end()) continue;
+      if (x != w) moved.push_back(ekey(x, w));
+      --line_degree_[v];
+      --line_degree_[x];
+      line_.erase(it);
     }
     for (const auto& e : moved)
       if (line_.insert(e).second) { ++line_degree_[e.first]; ++line_degree_[e.second]; }

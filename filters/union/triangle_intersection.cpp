@@ -14,10 +14,7 @@ int PairIntersector::edge_plane_point(int a, int b, int face) {
   auto it = edge_face_cache_.find(key);
   if (it != edge_face_cache_.end()) return it->second;
   const auto& F = soup_.face[face];
-  const mpq_class oa = orient3d_exact(vp(F[0]), vp(F[1]), vp(F[2]), vp(a));
-  const mpq_class ob = orient3d_exact(vp(F[0]), vp(F[1]), vp(F[2]), vp(b));
-  const mpq_class t = oa / (oa - ob);
-  int id = points_.insert(lerp(points_[vertex_point_[a]], points_[vertex_point_[b]], t));
+  int id = points_.insert(edge_plane_crossing(vp(a), vp(b), vp(F[0]), vp(F[1]), vp(F[2])));
   edge_face_cache_.emplace(key, id);
   return id;
 }
