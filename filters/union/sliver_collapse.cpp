@@ -30,8 +30,11 @@ double face_min_angle(const V3& a, const V3& b, const V3& c) {
 
 class Collapser {
 public:
-  Collapser(Result& r, const std::vector<char>& cut, double max_dev)
+  Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change)
       : r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()) {
+    double volume = 0;
+    for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
+    volume_budget_ = max_volume_change * std::fabs(volume);
     for (int f = 0; f < int(r.faces.size()); ++f)
       for (int v : r.faces[f]) vf_[v].push_back(f);
     V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
@@ -69,6 +72,8 @@ private:
   std::set<std::pair<int, int>> line_;
   std::vector<int> line_degree_;
   double max_dev_ = 0;
+  double volume_budget_ = 0;  // what the accepted moves may still change in total
+  static double det(const V3& a, const V3& b, const V3& c) { return dot(a, cross(b, c)); }
 
 public:
   int collapses_ = 0, flips_ = 0;
@@ -104,11 +109,22 @@ bool Collapser::try_collapse(int v, int w) {
     const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
     const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
     const double ln = norm(n_new), lo = norm(n_old);
-    if (!(ln > 0) || dot(n_old, n_new) <= 0.5 * lo * ln) return false;
+    if (!(ln > 0) || dot(n_old, n_new) <= 0.1 * lo * ln) return false;
     if (std::fabs(dot(sub3(P(v), q[0]), n_new)) / ln > max_dev_) return false;
     after = std::min(after, face_min_angle(q[0], q[1], q[2]));
   }
   if (!(after > before)) return false;
+  double dv = 0;  // six times the volume change
+  for (int f : fv) {
+    const auto& t = r_.faces[f];
+    dv -= det(P(t[0]), P(t[1]), P(t[2]));
+    if (std::find(t.begin(), t.end(), w) != t.end()) continue;
+    V3 q[3];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == v ? P(w) : P(t[z]);
+    dv += det(q[0], q[1], q[2]);
+  }
+  if (std::fabs(dv) / 6 > volume_budget_) return false;
+  volume_budget_ -= std::fabs(dv) / 6;
   for (int f : fv) {
     auto& t = r_.faces[f];
     if (std::find(t.begin(), t.end(), w) != t.end()) {
@@ -163,6 +179,9 @@ bool Collapser::try_flip(int f, int z) {
   const double before = std::min(min_angle(f), min_angle(g));
   const double after = std::min(face_min_angle(P(u), P(d), P(c)), face_min_angle(P(d), P(v), P(c)));
   if (!(after > before)) return false;
+  const double dv = std::fabs(det(P(u), P(d), P(c)) + det(P(d), P(v), P(c)) - det(P(u), P(v), P(c)) - det(P(v), P(u), P(d))) / 6;
+  if (dv > volume_budget_) return false;
+  volume_budget_ -= dv;
   r_.faces[f] = {u, d, c};
   r_.faces[g] = {d, v, c};
   vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
@@ -239,8 +258,9 @@ double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vec
   return best;
 }
 
-int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation) {
-  Collapser c(r, cut, max_deviation);
+int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
+                     double max_volume_change) {
+  Collapser c(r, cut, max_deviation, max_volume_change);
   const int n = c.run(sliver_angle_deg * kPi / 180);
   c.compact();
   return n;

@@ -85,6 +85,8 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   const auto t_start = Clock::now();
   if (!(params.sliver_angle_deg >= 0 && params.sliver_angle_deg < 60))
     throw InvalidInput("sliver angle must be in [0, 60) degrees");
+  if (!(params.sliver_max_deviation >= 0) || !(params.sliver_max_volume_change >= 0))
+    throw InvalidInput("sliver deviation and volume change bounds must be >= 0");
   std::vector<Body> bodies = input;
   Result r;
   r.bodies_reoriented = validate_bodies(bodies);
@@ -219,7 +221,8 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
 
   // 5. Slivers.
   t = Clock::now();
-  if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation);
+  if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,
+                                          params.sliver_max_volume_change);
   r.time_slivers_ms = ms_since(t);
   for (const auto& l : r.line_edge) r.intersection_edges += int(l[0]) + int(l[1]) + int(l[2]);
   r.intersection_edges /= 2;

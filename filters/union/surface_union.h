@@ -27,7 +27,9 @@ struct Params {
   double sliver_angle_deg = 10.0;
   /// Bound on how far (relative to the bounding-box diagonal) a collapse may move
   /// the surface; collapses on curved parts that would change the shape more are skipped.
-  double sliver_max_deviation = 1e-4;
+  double sliver_max_deviation = 1e-3;
+  /// Bound on the total volume change of all sliver moves, relative to the volume.
+  double sliver_max_volume_change = 1e-5;
 };
 
 struct Result {

@@ -67,6 +67,10 @@ RichParameterList FilterSurfaceUnionPlugin::initParameterList(const QAction*, co
   list.addParam(RichFloat("sliver_max_deviation", defaults.sliver_max_deviation, "Sliver collapse deviation",
                           "Largest distance a collapse may move the surface, as a fraction of the bounding-box "
                           "diagonal (collapses on curved parts that would move it more are skipped)."));
+  list.addParam(RichFloat("sliver_max_volume_change", defaults.sliver_max_volume_change,
+                          "Sliver collapse volume change",
+                          "Bound on the total volume change of all sliver collapses and flips, as a fraction of "
+                          "the volume of the union (0 allows only moves that keep the volume exactly)."));
   list.addParam(RichBool("create_lines_layer", false, "Create a layer with the intersection lines",
                          "Add a new layer holding the intersection lines as an edge mesh (polylines)."));
   return list;
@@ -110,6 +114,7 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
   mr::surface_union::Params p;
   p.sliver_angle_deg = params.getFloat("sliver_angle");
   p.sliver_max_deviation = params.getFloat("sliver_max_deviation");
+  p.sliver_max_volume_change = params.getFloat("sliver_max_volume_change");
   const int source = params.getEnum("bodies");
 
   if (cb) cb(0, "Collecting bodies");
