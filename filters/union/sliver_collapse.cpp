@@ -4,6 +4,9 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <unordered_map>
+
+#include "union/exact.h"
 
 namespace mr::surface_union {
 
@@ -31,7 +34,8 @@ double face_min_angle(const V3& a, const V3& b, const V3& c) {
 class Collapser {
 public:
   Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change)
-      : r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()) {
+      : frozen(r.vertices.size(), 0), r_(r), alive_(r.faces.size(), 1), touched_(r.faces.size(), 0), cut_(cut),
+        vf_(r.vertices.size()) {
     double volume = 0;
     for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
     volume_budget_ = max_volume_change * std::fabs(volume);
@@ -51,6 +55,12 @@ public:
 
   int run(double threshold_rad);
   void compact();
+  /// Vertices that may neither move nor be removed, nor have their faces flipped.
+  std::vector<char> frozen;
+  /// Faces whose geometry changed (indices before compaction).
+  std::vector<int> touched_faces() const;
+  bool alive(int f) const { return alive_[f] != 0; }
+  const Result& result() const { return r_; }
 
 private:
   static std::pair<int, int> ekey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
@@ -67,19 +77,29 @@ private:
 
   Result& r_;
   std::vector<char> alive_;
+  std::vector<char> touched_;
   std::vector<char> cut_;
   std::vector<std::vector<int>> vf_;
   std::set<std::pair<int, int>> line_;
   std::vector<int> line_degree_;
   double max_dev_ = 0;
   double volume_budget_ = 0;  // what the accepted moves may still change in total
+  double threshold_ = 0;      // sliver angle, radians
   static double det(const V3& a, const V3& b, const V3& c) { return dot(a, cross(b, c)); }
 
 public:
   int collapses_ = 0, flips_ = 0;
 };
 
+std::vector<int> Collapser::touched_faces() const {
+  std::vector<int> out;
+  for (int f = 0; f < int(r_.faces.size()); ++f)
+    if (alive_[f] && touched_[f]) out.push_back(f);
+  return out;
+}
+
 bool Collapser::try_collapse(int v, int w) {
+  if (frozen[v]) return false;
   // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2.
   const bool vw_line = line_.count(ekey(v, w)) > 0;
   if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) return false;
@@ -100,7 +120,12 @@ bool Collapser::try_collapse(int v, int w) {
   if (common != 2) return false;
   // Geometry: no flipped or degenerate face, bounded deviation, better worst angle.
   double before = 1e300, after = 1e300;
-  for (int f : fv) before = std::min(before, min_angle(f));
+  int bad_before = 0, bad_after = 0;
+  for (int f : fv) {
+    const double a = min_angle(f);
+    before = std::min(before, a);
+    bad_before += a < threshold_;
+  }
   for (int f : fv) {
     const auto& t = r_.faces[f];
     if (std::find(t.begin(), t.end(), w) != t.end()) continue;
@@ -111,9 +136,13 @@ bool Collapser::try_collapse(int v, int w) {
     const double ln = norm(n_new), lo = norm(n_old);
     if (!(ln > 0) || dot(n_old, n_new) <= 0.1 * lo * ln) return false;
     if (std::fabs(dot(sub3(P(v), q[0]), n_new)) / ln > max_dev_) return false;
-    after = std::min(after, face_min_angle(q[0], q[1], q[2]));
+    const double a = face_min_angle(q[0], q[1], q[2]);
+    after = std::min(after, a);
+    bad_after += a < threshold_;
   }
-  if (!(after > before)) return false;
+  // Better: a larger worst angle, or fewer slivers without making the worst one
+  // much worse (two neighbouring slivers often cannot both improve in one step).
+  if (!(after > before || (bad_after < bad_before && after >= 0.5 * before))) return false;
   double dv = 0;  // six times the volume change
   for (int f : fv) {
     const auto& t = r_.faces[f];
@@ -127,6 +156,7 @@ bool Collapser::try_collapse(int v, int w) {
   volume_budget_ -= std::fabs(dv) / 6;
   for (int f : fv) {
     auto& t = r_.faces[f];
+    touched_[f] = 1;
     if (std::find(t.begin(), t.end(), w) != t.end()) {
       alive_[f] = 0;
       continue;
@@ -156,7 +186,7 @@ bool Collapser::try_collapse(int v, int w) {
 
 bool Collapser::try_flip(int f, int z) {
   const int u = r_.faces[f][z], v = r_.faces[f][(z + 1) % 3], c = r_.faces[f][(z + 2) % 3];
-  if (line_.count(ekey(u, v))) return false;
+  if (line_.count(ekey(u, v)) || frozen[u] || frozen[v] || frozen[c]) return false;
   int g = -1;
   for (int h : vf_[v])
     if (alive_[h] && h != f)
@@ -174,16 +204,20 @@ bool Collapser::try_flip(int f, int z) {
   const V3 n2 = cross(sub3(P(v), P(d)), sub3(P(c), P(d)));
   for (const V3& n : {n1, n2})
     if (!(norm(n) > 0) || dot(n, n_f) <= 0 || dot(n, n_g) <= 0) return false;
-  // The four points must be (nearly) coplanar: d's distance from the plane of f.
-  if (std::fabs(dot(sub3(P(d), P(u)), n_f)) / norm(n_f) > max_dev_) return false;
+  // How far the surface moves: the distance between the old and the new diagonal.
+  const V3 cross_diagonals = cross(sub3(P(v), P(u)), sub3(P(d), P(c)));
+  const double lc = norm(cross_diagonals);
+  if (!(lc > 0) || std::fabs(dot(sub3(P(c), P(u)), cross(sub3(P(v), P(u)), sub3(P(d), P(u))))) / lc > max_dev_) return false;
   const double before = std::min(min_angle(f), min_angle(g));
   const double after = std::min(face_min_angle(P(u), P(d), P(c)), face_min_angle(P(d), P(v), P(c)));
   if (!(after > before)) return false;
   const double dv = std::fabs(det(P(u), P(d), P(c)) + det(P(d), P(v), P(c)) - det(P(u), P(v), P(c)) - det(P(v), P(u), P(d))) / 6;
   if (dv > volume_budget_) return false;
   volume_budget_ -= dv;
+  if (frozen[d]) return false;
   r_.faces[f] = {u, d, c};
   r_.faces[g] = {d, v, c};
+  touched_[f] = touched_[g] = 1;
   vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
   vf_[v].erase(std::remove(vf_[v].begin(), vf_[v].end(), f), vf_[v].end());
   vf_[c].push_back(g);
@@ -192,6 +226,7 @@ bool Collapser::try_flip(int f, int z) {
 }
 
 int Collapser::run(double threshold) {
+  threshold_ = threshold;
   for (int pass = 0; pass < 10; ++pass) {
     std::vector<std::pair<double, int>> bad;
     for (int f = 0; f < int(r_.faces.size()); ++f)
@@ -217,7 +252,9 @@ int Collapser::run(double threshold) {
         const int a = t[z], b = t[(z + 1) % 3];
         if (try_collapse(a, b) || try_collapse(b, a)) { ++done; ++collapses_; ok = true; break; }
       }
-      if (!ok && !cap && try_flip(f, edges[2].second)) { ++done; ++flips_; }
+      // Otherwise a flip of any side may reshape the neighbourhood for a later pass.
+      for (int k = 2; k >= 0 && !ok; --k)
+        if (try_flip(f, edges[k].second)) { ++done; ++flips_; ok = true; }
     }
     if (done == 0) break;
   }
@@ -258,12 +295,130 @@ double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vec
   return best;
 }
 
+namespace {
+
+/// Segment (p, q) meets the closed triangle (a, b, c) (exact; coplanar counts as a hit).
+bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+  const int sp = orient3d(a.data(), b.data(), c.data(), p.data());
+  const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
+  if (sp * sq > 0) return false;
+  if (sp == 0 && sq == 0) return true;
+  const int s1 = orient3d(p.data(), q.data(), a.data(), b.data());
+  const int s2 = orient3d(p.data(), q.data(), b.data(), c.data());
+  const int s3 = orient3d(p.data(), q.data(), c.data(), a.data());
+  return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
+}
+
+/// Faces f and g (of one mesh) intersect other than along what they share.
+bool faces_meet(const Result& r, int f, int g) {
+  const auto &F = r.faces[f], &G = r.faces[g];
+  int shared = 0, sf = -1, sg = -1;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (F[i] == G[j]) { ++shared; sf = i; sg = j; }
+  if (shared >= 2) return false;  // neighbours across an edge
+  const auto& V = r.vertices;
+  if (shared == 1) {  // only the edges opposite the shared corner can cross the other face
+    return segment_meets_triangle(V[F[(sf + 1) % 3]], V[F[(sf + 2) % 3]], V[G[0]], V[G[1]], V[G[2]]) ||
+           segment_meets_triangle(V[G[(sg + 1) % 3]], V[G[(sg + 2) % 3]], V[F[0]], V[F[1]], V[F[2]]);
+  }
+  for (int e = 0; e < 3; ++e)
+    if (segment_meets_triangle(V[F[e]], V[F[(e + 1) % 3]], V[G[0]], V[G[1]], V[G[2]]) ||
+        segment_meets_triangle(V[G[e]], V[G[(e + 1) % 3]], V[F[0]], V[F[1]], V[F[2]]))
+      return true;
+  return false;
+}
+
+/// Touched faces of `c` that meet another live face, found through a grid of boxes.
+std::vector<int> new_intersections(const Collapser& c) {
+  const Result& r = c.result();
+  const std::vector<int> touched = c.touched_faces();
+  std::vector<int> bad;
+  if (touched.empty()) return bad;
+  auto box = [&](int f, V3& lo, V3& hi) {
+    lo = hi = r.vertices[r.faces[f][0]];
+    for (int z = 1; z < 3; ++z)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], r.vertices[r.faces[f][z]][k]);
+        hi[k] = std::max(hi[k], r.vertices[r.faces[f][z]][k]);
+      }
+  };
+  V3 all_lo{1e300, 1e300, 1e300}, all_hi{-1e300, -1e300, -1e300};
+  double size = 0;
+  int live = 0;
+  for (int f = 0; f < int(r.faces.size()); ++f) {
+    if (!c.alive(f)) continue;
+    V3 lo, hi;
+    box(f, lo, hi);
+    for (int k = 0; k < 3; ++k) { all_lo[k] = std::min(all_lo[k], lo[k]); all_hi[k] = std::max(all_hi[k], hi[k]); }
+    size += std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    ++live;
+  }
+  const double cell = std::max(2 * size / std::max(live, 1), 1e-300);
+  auto cell_of = [&](double x, int k) { return int64_t(std::floor((x - all_lo[k]) / cell)); };
+  auto key = [](int64_t i, int64_t j, int64_t k) { return (i * 73856093) ^ (j * 19349663) ^ (k * 83492791); };
+  std::unordered_map<int64_t, std::vector<int>> grid;
+  for (int f = 0; f < int(r.faces.size()); ++f) {
+    if (!c.alive(f)) continue;
+    V3 lo, hi;
+    box(f, lo, hi);
+    for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0); ++i)
+      for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1); ++j)
+        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) grid[key(i, j, k)].push_back(f);
+  }
+  for (int f : touched) {
+    V3 lo, hi;
+    box(f, lo, hi);
+    std::set<int> seen;
+    bool hit = false;
+    for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0) && !hit; ++i)
+      for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1) && !hit; ++j)
+        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2) && !hit; ++k) {
+          auto it = grid.find(key(i, j, k));
+          if (it == grid.end()) continue;
+          for (int g : it->second) {
+            if (g == f || !seen.insert(g).second) continue;
+            V3 glo, ghi;
+            box(g, glo, ghi);
+            bool apart = false;
+            for (int a = 0; a < 3; ++a) apart |= ghi[a] < lo[a] || hi[a] < glo[a];
+            if (!apart && faces_meet(r, f, g)) { hit = true; break; }
+          }
+        }
+    if (hit) bad.push_back(f);
+  }
+  return bad;
+}
+
+}  // namespace
+
 int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
                      double max_volume_change) {
-  Collapser c(r, cut, max_deviation, max_volume_change);
-  const int n = c.run(sliver_angle_deg * kPi / 180);
-  c.compact();
-  return n;
+  // Moves are local and checked for shape, not for running into another part of the
+  // surface (thin plates); so the result is checked exactly and, where a moved face
+  // meets another, the step is redone with those vertices and their neighbours frozen.
+  std::vector<char> frozen(r.vertices.size(), 0);
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    Result trial = r;
+    Collapser c(trial, cut, max_deviation, max_volume_change);
+    c.frozen = frozen;
+    const int n = c.run(sliver_angle_deg * kPi / 180);
+    const std::vector<int> bad = new_intersections(c);
+    if (bad.empty()) {
+      c.compact();
+      r = std::move(trial);
+      return n;
+    }
+    // Freeze the original vertices of the offending neighbourhoods.
+    std::set<int> region;
+    for (int f : bad)
+      for (int v : trial.faces[f]) region.insert(v);
+    for (int f = 0; f < int(r.faces.size()); ++f)
+      for (int v : r.faces[f])
+        if (region.count(v))
+          for (int x : r.faces[f]) frozen[x] = 1;
+  }
+  return 0;  // could not improve without self-intersections: keep the exact arrangement
 }
 
 }  // namespace mr::surface_union
