@@ -302,7 +302,28 @@ bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, 
   const int sp = orient3d(a.data(), b.data(), c.data(), p.data());
   const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
   if (sp * sq > 0) return false;
-  if (sp == 0 && sq == 0) return true;
+  if (sp == 0 && sq == 0) {  // coplanar: closed segment against closed triangle in 2D
+    const QPoint P = make_point(p), Q = make_point(q), A = make_point(a), B = make_point(b), C = make_point(c);
+    const Projection pr = face_projection(A, B, C);
+    auto o = [&](const QPoint& x, const QPoint& y, const QPoint& z) { return orient2d(x, y, z, pr.i, pr.j); };
+    auto inside = [&](const QPoint& x) { return o(A, B, x) >= 0 && o(B, C, x) >= 0 && o(C, A, x) >= 0; };
+    if (inside(P) || inside(Q)) return true;
+    auto on_segment = [&](const QPoint& x, const QPoint& y, const QPoint& z) {  // z on closed xy, collinear
+      for (int k : {pr.i, pr.j})
+        if (std::min(x.d[k], y.d[k]) > z.d[k] || std::max(x.d[k], y.d[k]) < z.d[k]) return false;
+      return true;
+    };
+    const QPoint* T[3] = {&A, &B, &C};
+    for (int e = 0; e < 3; ++e) {
+      const QPoint &X = *T[e], &Y = *T[(e + 1) % 3];
+      const int o1 = o(P, Q, X), o2 = o(P, Q, Y), o3 = o(X, Y, P), o4 = o(X, Y, Q);
+      if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+      if ((o1 == 0 && on_segment(P, Q, X)) || (o2 == 0 && on_segment(P, Q, Y)) || (o3 == 0 && on_segment(X, Y, P)) ||
+          (o4 == 0 && on_segment(X, Y, Q)))
+        return true;
+    }
+    return false;
+  }
   const int s1 = orient3d(p.data(), q.data(), a.data(), b.data());
   const int s2 = orient3d(p.data(), q.data(), b.data(), c.data());
   const int s3 = orient3d(p.data(), q.data(), c.data(), a.data());
@@ -313,9 +334,10 @@ bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, 
 bool faces_meet(const Result& r, int f, int g) {
   const auto &F = r.faces[f], &G = r.faces[g];
   int shared = 0, sf = -1, sg = -1;
+  // Shared corners by position: shells that only touch have distinct, coincident vertices.
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      if (F[i] == G[j]) { ++shared; sf = i; sg = j; }
+      if (F[i] == G[j] || r.vertices[F[i]] == r.vertices[G[j]]) { ++shared; sf = i; sg = j; }
   if (shared >= 2) return false;  // neighbours across an edge
   const auto& V = r.vertices;
   if (shared == 1) {  // only the edges opposite the shared corner can cross the other face
