@@ -66,7 +66,8 @@ private:
   static std::pair<int, int> ekey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
   V3 P(int v) const { return r_.vertices[v]; }
   double min_angle(int f) const { return face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2])); }
-  bool try_collapse(int v, int w);  // moves v onto w
+  /// Moves v onto w if allowed; with `apply` false only checks, and `dv` gets the volume change.
+  bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
   bool try_flip(int f, int z);      // flips side z of face f
   std::vector<int> live_faces(int v) const {
     std::vector<int> out;
@@ -98,7 +99,7 @@ std::vector<int> Collapser::touched_faces() const {
   return out;
 }
 
-bool Collapser::try_collapse(int v, int w) {
+bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   if (frozen[v]) return false;
   // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2.
   const bool vw_line = line_.count(ekey(v, w)) > 0;
@@ -153,6 +154,8 @@ bool Collapser::try_collapse(int v, int w) {
     dv += det(q[0], q[1], q[2]);
   }
   if (std::fabs(dv) / 6 > volume_budget_) return false;
+  if (dv_out) *dv_out = std::fabs(dv) / 6;
+  if (!apply) return true;
   volume_budget_ -= std::fabs(dv) / 6;
   for (int f : fv) {
     auto& t = r_.faces[f];
@@ -247,11 +250,17 @@ int Collapser::run(double threshold) {
       const bool cap = angle(P(t[(edges[2].second + 2) % 3]), P(t[edges[2].second]), P(t[(edges[2].second + 1) % 3])) >
                        2 * kPi / 3;
       if (cap && try_flip(f, edges[2].second)) { ++done; ++flips_; continue; }
+      // Of the allowed collapses, the one that changes the volume least.
       bool ok = false;
-      for (const auto& [len, z] : edges) {
-        const int a = t[z], b = t[(z + 1) % 3];
-        if (try_collapse(a, b) || try_collapse(b, a)) { ++done; ++collapses_; ok = true; break; }
-      }
+      int best_v = -1, best_w = -1;
+      double best_dv = 1e300;
+      for (const auto& [len, z] : edges)
+        for (int dir = 0; dir < 2; ++dir) {
+          const int a = t[(z + dir) % 3], b = t[(z + 1 - dir) % 3];
+          double dv = 0;
+          if (try_collapse(a, b, false, &dv) && dv < best_dv) { best_dv = dv; best_v = a; best_w = b; }
+        }
+      if (best_v >= 0 && try_collapse(best_v, best_w)) { ++done; ++collapses_; ok = true; }
       // Otherwise a flip of any side may reshape the neighbourhood for a later pass.
       for (int k = 2; k >= 0 && !ok; --k)
         if (try_flip(f, edges[k].second)) { ++done; ++flips_; ok = true; }
