@@ -100,7 +100,8 @@ def time_meshlab(bodies, repeats):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=1)
-    ap.add_argument("--sizes", default="10,50,200", help="sphere counts of the cluster sweep")
+    ap.add_argument("--sizes", default="10,50,200,2000@2",
+                    help="sphere counts of the cluster sweep, N or N@SUBDIV (subdivision of that size)")
     ap.add_argument("--subdiv", type=int, default=3, help="sphere subdivision (3: 1280 triangles each)")
     ap.add_argument("--meshlab-max-bodies", type=int, default=50,
                     help="skip MeshLab's chained union above this many bodies (it grows quadratically)")
@@ -108,8 +109,11 @@ def main():
     args = ap.parse_args()
     cases = [("ballA + ballB", bodies_of("balls")), ("box.STL (10 plates)", bodies_of("box.STL")),
              ("rabbit.obj (9 blobs)", bodies_of("rabbit.obj"))]
-    for n in (int(s) for s in args.sizes.split(",")):
-        cases.append((f"{n} spheres", sphere_cluster(n, args.subdiv)))
+    for item in args.sizes.split(","):
+        n, _, sub = item.partition("@")
+        sub = int(sub) if sub else args.subdiv
+        cluster = sphere_cluster(int(n), sub)
+        cases.append((f"{n} spheres ({len(cluster[0][1])} tri each)", cluster))
     rows = ["| case | bodies | input triangles | ours (s) | MeshLab chained (s) | manifold3d (s) | ours / MeshLab | "
             "ours / manifold3d | volume / manifold3d - 1 | our min angle (deg) |",
             "|---|---|---|---|---|---|---|---|---|---|"]
@@ -130,8 +134,8 @@ def main():
         "## Union of intersecting bodies (`scripts/bench_union.py`)", "",
         f"Command: `.venv/bin/python scripts/bench_union.py --sizes {args.sizes}` — {datetime.date.today()}, "
         f"{platform.machine()} {platform.system()}, 2 cores shared with other jobs; best of {args.repeats}. "
-        f"Spheres: radius 0.5, {sphere_cluster(1, args.subdiv)[0][1].shape[0]} triangles each, random centres "
-        "in a cube of side 0.9 n^(1/3) (seed 1). Ours: `generate_surface_intersection_union(bodies=1)` on one "
+        "Spheres: radius 0.5 (icospheres, subdivision 3 = 1280 triangles unless N@S says otherwise), random "
+        "centres in a cube of side 0.9 n^(1/3) (seed 1). Ours: `generate_surface_intersection_union(bodies=1)` on one "
         "layer holding all bodies, default sliver step. MeshLab: `generate_boolean_union` chained over the "
         "layers. manifold3d: `Manifold.batch_boolean(..., Add)` from Mesh64, evaluated. Goals: ours / MeshLab "
         "<= 0.1, ours / manifold3d <= 2.", ""] + rows) + "\n"

@@ -127,3 +127,63 @@ TEST(UnionBadInput, MessagesNameTheBody) {
   EXPECT_THROW(compute_union({}), InvalidInput);
   EXPECT_THROW(compute_union({Body{}}), InvalidInput);
 }
+
+namespace {
+
+struct AABB {
+  double lo[3], hi[3];
+};
+
+double box_volume_union(const std::vector<AABB>& boxes) {
+  // Inclusion-exclusion over all subsets (few boxes).
+  const size_t n = boxes.size();
+  double total = 0;
+  for (size_t mask = 1; mask < (size_t(1) << n); ++mask) {
+    double lo[3] = {-1e300, -1e300, -1e300}, hi[3] = {1e300, 1e300, 1e300};
+    int bits = 0;
+    for (size_t i = 0; i < n; ++i)
+      if (mask & (size_t(1) << i)) {
+        ++bits;
+        for (int k = 0; k < 3; ++k) { lo[k] = std::max(lo[k], boxes[i].lo[k]); hi[k] = std::min(hi[k], boxes[i].hi[k]); }
+      }
+    double v = 1;
+    for (int k = 0; k < 3; ++k) v *= std::max(0.0, hi[k] - lo[k]);
+    total += (bits % 2 ? 1 : -1) * v;
+  }
+  return total;
+}
+
+}  // namespace
+
+TEST(UnionCases, ThreeCubesWithTriplePointsAndSharedPlanes) {
+  // Offsets chosen so faces of different cubes are coplanar and lines of three
+  // bodies cross: every degenerate configuration at once, exact volume known.
+  const double off[3][3] = {{0, 0, 0}, {1, 0.5, 0}, {0.5, 1, 1}};
+  std::vector<Body> bodies;
+  std::vector<AABB> boxes;
+  for (const auto& o : off) {
+    bodies.push_back(cube_body(2, o[0], o[1], o[2]));
+    boxes.push_back({{o[0] - 1, o[1] - 1, o[2] - 1}, {o[0] + 1, o[1] + 1, o[2] + 1}});
+  }
+  for (double sliver : {0.0, 10.0}) {
+    const Result r = unite(bodies, sliver);
+    expect_closed(r);
+    EXPECT_NEAR(volume(r), box_volume_union(boxes), 1e-12) << sliver;
+    EXPECT_EQ(r.intersecting_pairs, 3);
+  }
+}
+
+TEST(UnionCases, SliverStepKeepsClosedAndWithinVolumeBudget) {
+  TriMesh m;
+  test::sphere(m, 3);
+  std::vector<Body> bodies;
+  const double c[5][3] = {{0, 0, 0}, {0.9, 0.1, 0}, {0.3, 0.8, 0.2}, {-0.5, 0.4, 0.6}, {0.2, -0.3, -0.9}};
+  for (const auto& x : c) bodies.push_back(make_body(m, x[0], x[1], x[2]));
+  const Result raw = unite(bodies, 0.0);
+  const Result improved = unite(bodies, 10.0);
+  expect_closed(improved);
+  EXPECT_GT(improved.slivers_collapsed, 0);
+  EXPECT_GT(improved.min_angle_deg, raw.min_angle_deg);
+  EXPECT_LE(std::fabs(volume(improved) / volume(raw) - 1), Params{}.sliver_max_volume_change * (1 + 1e-9));
+  EXPECT_EQ(improved.lines.size(), raw.lines.size());
+}
