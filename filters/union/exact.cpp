@@ -48,7 +48,17 @@ mpq_class orient3d_exact(const double* a, const double* b, const double* c, cons
          m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 
+namespace {
+
+/// Exact sign of det[b-a, c-a, d-a] with integers (all inputs scaled to one power of two).
+int orient3d_integer_sign(const double* a, const double* b, const double* c, const double* d);
+
+}  // namespace
+
 int orient3d(const double* a, const double* b, const double* c, const double* d) {
+  // Points on one axis-aligned plane (common in CAD models): exactly coplanar.
+  for (int k = 0; k < 3; ++k)
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return 0;
   const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
   const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
   const double dx = d[0] - a[0], dy = d[1] - a[1], dz = d[2] - a[2];
@@ -61,7 +71,7 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
   const double bound = 1e-14 * perm;
   if (det > bound) return 1;
   if (det < -bound) return -1;
-  return sign_of(orient3d_exact(a, b, c, d));
+  return orient3d_integer_sign(a, b, c, d);
 }
 
 mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
@@ -104,6 +114,32 @@ int scale_to_integers(const double* const* values, int n, mpz_class* out) {
     if (mant[i] != 0) out[i] <<= (expo[i] - emin);
   }
   return emin;
+}
+
+}  // namespace
+
+namespace {
+
+int orient3d_integer_sign(const double* a, const double* b, const double* c, const double* d) {
+  const double* vals[12];
+  for (int k = 0; k < 3; ++k) {
+    vals[k] = &a[k];
+    vals[3 + k] = &b[k];
+    vals[6 + k] = &c[k];
+    vals[9 + k] = &d[k];
+  }
+  mpz_class z[12];
+  scale_to_integers(vals, 12, z);
+  mpz_class m[3][3];
+  for (int k = 0; k < 3; ++k) {
+    m[0][k] = z[3 + k] - z[k];
+    m[1][k] = z[6 + k] - z[k];
+    m[2][k] = z[9 + k] - z[k];
+  }
+  const mpz_class det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                        m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                        m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  return sgn(det);
 }
 
 }  // namespace

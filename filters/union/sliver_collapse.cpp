@@ -79,6 +79,7 @@ private:
   Result& r_;
   std::vector<char> alive_;
   std::vector<char> touched_;
+  std::vector<char> changed_;  // vertices whose neighbourhood changed in this pass
   std::vector<char> cut_;
   std::vector<std::vector<int>> vf_;
   std::set<std::pair<int, int>> line_;
@@ -157,6 +158,8 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   if (dv_out) *dv_out = std::fabs(dv) / 6;
   if (!apply) return true;
   volume_budget_ -= std::fabs(dv) / 6;
+  for (int x : nv) changed_[x] = 1;
+  for (int x : nw) changed_[x] = 1;
   for (int f : fv) {
     auto& t = r_.faces[f];
     touched_[f] = 1;
@@ -221,6 +224,10 @@ bool Collapser::try_flip(int f, int z) {
   r_.faces[f] = {u, d, c};
   r_.faces[g] = {d, v, c};
   touched_[f] = touched_[g] = 1;
+  for (int x : {u, v, c, d})
+    for (int h : vf_[x])
+      if (alive_[h])
+        for (int y : r_.faces[h]) changed_[y] = 1;
   vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
   vf_[v].erase(std::remove(vf_[v].begin(), vf_[v].end(), f), vf_[v].end());
   vf_[c].push_back(g);
@@ -230,6 +237,7 @@ bool Collapser::try_flip(int f, int z) {
 
 int Collapser::run(double threshold) {
   threshold_ = threshold;
+  changed_.assign(r_.vertices.size(), 1);
   for (int pass = 0; pass < 10; ++pass) {
     std::vector<std::pair<double, int>> bad;
     for (int f = 0; f < int(r_.faces.size()); ++f)
@@ -239,9 +247,14 @@ int Collapser::run(double threshold) {
       }
     std::sort(bad.begin(), bad.end());
     int done = 0;
+    // After the first pass only slivers whose neighbourhood changed can have new options.
+    std::vector<char> changed;
+    changed.swap(changed_);
+    changed_.assign(r_.vertices.size(), 0);
     for (const auto& [a0, f] : bad) {
       if (!alive_[f] || min_angle(f) >= threshold) continue;
       const auto t = r_.faces[f];
+      if (pass > 0 && !changed[t[0]] && !changed[t[1]] && !changed[t[2]]) continue;
       // Edges by length, shortest first; each tried in both directions. A cap (one
       // large angle) is first flipped across its longest edge, which moves nothing.
       std::array<std::pair<double, int>, 3> edges;
@@ -312,19 +325,31 @@ bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, 
   const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
   if (sp * sq > 0) return false;
   if (sp == 0 && sq == 0) {  // coplanar: closed segment against closed triangle in 2D
-    const QPoint P = make_point(p), Q = make_point(q), A = make_point(a), B = make_point(b), C = make_point(c);
-    const Projection pr = face_projection(A, B, C);
-    auto o = [&](const QPoint& x, const QPoint& y, const QPoint& z) { return orient2d(x, y, z, pr.i, pr.j); };
-    auto inside = [&](const QPoint& x) { return o(A, B, x) >= 0 && o(B, C, x) >= 0 && o(C, A, x) >= 0; };
+    const V3 n = cross(sub3(b, a), sub3(c, a));
+    int k = 0;
+    for (int t = 1; t < 3; ++t)
+      if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+    const Projection pr{(k + 1) % 3, (k + 2) % 3};
+    // Doubles are exact inputs: a filtered 2D orientation with an exact fallback.
+    auto o = [&](const V3& x, const V3& y, const V3& z) {
+      const double det = (y[pr.i] - x[pr.i]) * (z[pr.j] - x[pr.j]) - (y[pr.j] - x[pr.j]) * (z[pr.i] - x[pr.i]);
+      const double perm = std::fabs((y[pr.i] - x[pr.i]) * (z[pr.j] - x[pr.j])) + std::fabs((y[pr.j] - x[pr.j]) * (z[pr.i] - x[pr.i]));
+      if (det > 1e-14 * perm) return 1;
+      if (det < -1e-14 * perm) return -1;
+      return orient2d(make_point(x), make_point(y), make_point(z), pr.i, pr.j);
+    };
+    const int sign = o(a, b, c);  // orientation of the triangle in this projection
+    const V3 &P = p, &Q = q, &A = a, &B = b, &C = c;
+    auto inside = [&](const V3& x) { return sign * o(A, B, x) >= 0 && sign * o(B, C, x) >= 0 && sign * o(C, A, x) >= 0; };
     if (inside(P) || inside(Q)) return true;
-    auto on_segment = [&](const QPoint& x, const QPoint& y, const QPoint& z) {  // z on closed xy, collinear
+    auto on_segment = [&](const V3& x, const V3& y, const V3& z) {  // z on closed xy, collinear
       for (int k : {pr.i, pr.j})
-        if (std::min(x.d[k], y.d[k]) > z.d[k] || std::max(x.d[k], y.d[k]) < z.d[k]) return false;
+        if (std::min(x[k], y[k]) > z[k] || std::max(x[k], y[k]) < z[k]) return false;
       return true;
     };
-    const QPoint* T[3] = {&A, &B, &C};
+    const V3* T[3] = {&A, &B, &C};
     for (int e = 0; e < 3; ++e) {
-      const QPoint &X = *T[e], &Y = *T[(e + 1) % 3];
+      const V3 &X = *T[e], &Y = *T[(e + 1) % 3];
       const int o1 = o(P, Q, X), o2 = o(P, Q, Y), o3 = o(X, Y, P), o4 = o(X, Y, Q);
       if (o1 * o2 < 0 && o3 * o4 < 0) return true;
       if ((o1 == 0 && on_segment(P, Q, X)) || (o2 == 0 && on_segment(P, Q, Y)) || (o3 == 0 && on_segment(X, Y, P)) ||
@@ -375,17 +400,19 @@ std::vector<int> new_intersections(const Collapser& c) {
       }
   };
   V3 all_lo{1e300, 1e300, 1e300}, all_hi{-1e300, -1e300, -1e300};
-  double size = 0;
-  int live = 0;
+  std::vector<double> sizes;
   for (int f = 0; f < int(r.faces.size()); ++f) {
     if (!c.alive(f)) continue;
     V3 lo, hi;
     box(f, lo, hi);
     for (int k = 0; k < 3; ++k) { all_lo[k] = std::min(all_lo[k], lo[k]); all_hi[k] = std::max(all_hi[k], hi[k]); }
-    size += std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-    ++live;
+    sizes.push_back(std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
   }
-  const double cell = std::max(2 * size / std::max(live, 1), 1e-300);
+  // Cells of twice the median face size (long CAD faces would make a mean too coarse),
+  // but not so small that the grid gets huge.
+  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+  const double extent = std::max({all_hi[0] - all_lo[0], all_hi[1] - all_lo[1], all_hi[2] - all_lo[2]});
+  const double cell = std::max({2 * sizes[sizes.size() / 2], extent / 200, 1e-300});
   auto cell_of = [&](double x, int k) { return int64_t(std::floor((x - all_lo[k]) / cell)); };
   auto key = [](int64_t i, int64_t j, int64_t k) { return (i * 73856093) ^ (j * 19349663) ^ (k * 83492791); };
   std::unordered_map<int64_t, std::vector<int>> grid;
