@@ -110,8 +110,8 @@ int scale_to_integers(const double* const* values, int n, mpz_class* out) {
   }
   if (emin == std::numeric_limits<int>::max()) emin = 0;
   for (int i = 0; i < n; ++i) {
-    out[i] = mpz_class(static_cast<long>(mant[i]));
-    if (mant[i] != 0) out[i] <<= (expo[i] - emin);
+    out[i] = static_cast<long>(mant[i]);
+    if (mant[i] != 0) mpz_mul_2exp(out[i].get_mpz_t(), out[i].get_mpz_t(), expo[i] - emin);
   }
   return emin;
 }
@@ -128,9 +128,10 @@ int orient3d_integer_sign(const double* a, const double* b, const double* c, con
     vals[6 + k] = &c[k];
     vals[9 + k] = &d[k];
   }
-  mpz_class z[12];
+  // Reused across calls: GMP keeps the limbs, which saves most allocations.
+  thread_local mpz_class z[12];
+  thread_local mpz_class m[3][3];
   scale_to_integers(vals, 12, z);
-  mpz_class m[3][3];
   for (int k = 0; k < 3; ++k) {
     m[0][k] = z[3 + k] - z[k];
     m[1][k] = z[6 + k] - z[k];
@@ -153,10 +154,10 @@ QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, c
     vals[9 + k] = &f1[k];
     vals[12 + k] = &f2[k];
   }
-  mpz_class z[15];
+  thread_local mpz_class z[15];  // reused across calls (saves allocations)
+  thread_local mpz_class u[3], v[3], ra[3], rb[3];
   const int e = scale_to_integers(vals, 15, z);
   const mpz_class *A = z, *B = z + 3, *F0 = z + 6, *F1 = z + 9, *F2 = z + 12;
-  mpz_class u[3], v[3], ra[3], rb[3];
   for (int k = 0; k < 3; ++k) {
     u[k] = F1[k] - F0[k];
     v[k] = F2[k] - F0[k];

@@ -107,18 +107,20 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) return false;
   const std::vector<int> fv = live_faces(v), fw = live_faces(w);
   // Link condition: v and w share exactly the two opposite vertices of their two faces.
-  std::set<int> nv, nw;
-  for (int f : fv)
-    for (int x : r_.faces[f]) nv.insert(x);
-  for (int f : fw)
-    for (int x : r_.faces[f]) nw.insert(x);
   int shared_faces = 0;
   for (int f : fv)
     if (std::find(r_.faces[f].begin(), r_.faces[f].end(), w) != r_.faces[f].end()) ++shared_faces;
   if (shared_faces != 2) return false;
+  std::vector<int> nv, nw;  // one-rings (sorted, unique)
+  for (int f : fv) nv.insert(nv.end(), r_.faces[f].begin(), r_.faces[f].end());
+  for (int f : fw) nw.insert(nw.end(), r_.faces[f].begin(), r_.faces[f].end());
+  for (auto* n : {&nv, &nw}) {
+    std::sort(n->begin(), n->end());
+    n->erase(std::unique(n->begin(), n->end()), n->end());
+  }
   int common = 0;
   for (int x : nv)
-    if (x != v && x != w && nw.count(x)) ++common;
+    if (x != v && x != w && std::binary_search(nw.begin(), nw.end(), x)) ++common;
   if (common != 2) return false;
   // Geometry: no flipped or degenerate face, bounded deviation, better worst angle.
   double before = 1e300, after = 1e300;
