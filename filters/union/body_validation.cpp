@@ -63,7 +63,8 @@ int validate_bodies(std::vector<Body>& bodies) {
       i = j;
     }
     if (open) throw TopologyError(name + " is not closed (" + std::to_string(open) +
-                                  " boundary edges): close its holes first (Remeshing > Close Holes)");
+                                  " boundary edges): close its holes first (Remeshing > Close Holes), or weld "
+                                  "duplicate vertices if it is a triangle soup such as an STL file");
     if (nonmanifold)
       throw TopologyError(name + " is non-manifold (" + std::to_string(nonmanifold) +
                           " edges with more than two faces): repair it first (Cleaning and Repairing > "

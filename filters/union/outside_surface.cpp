@@ -170,6 +170,7 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     }
     if (inside) { ++out.pieces_inside; continue; }
     const int s0 = start[r];
+    if (s0 < 0) continue;  // no usable face at the extreme vertex (all degenerate): leave the piece out
     out.kept[s0] = 1;
     stack.push_back(s0);
     while (!stack.empty()) {
