@@ -390,3 +390,20 @@ def test_cli_union_components_of_one_file(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "meshregrid", "union", str(src), str(out), "--components"],
                           capture_output=True, text=True, check=True)
     assert json.loads(proc.stdout)["bodies"] == 9
+
+
+def test_sliver_step_on_a_ten_sphere_cluster_leaves_no_face_under_5_degrees():
+    # Icospheres (smallest angle 54 deg); the raw cut has about 400 faces under 5 deg.
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(radius=0.5, subdiv=3)
+    v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
+    centres = np.random.default_rng(1).random((10, 3)) * 10 ** (1 / 3) * 0.9
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(np.concatenate([v + c for c in centres]),
+                               np.concatenate([f + i * len(v) for i in range(10)])))
+    parts = [pymeshlab.Mesh(v + c, f) for c in centres]
+    ref = reference(parts)
+    r = unite(ms, bodies=COMPONENTS)
+    assert r["bodies"] == 10
+    assert angles(ms.mesh(1)).min() >= 5.0
+    assert check_union(ms, 1) == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL)
