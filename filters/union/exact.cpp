@@ -1,5 +1,6 @@
 #include "union/exact.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -72,6 +73,49 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
   if (det > bound) return 1;
   if (det < -bound) return -1;
   return orient3d_integer_sign(a, b, c, d);
+}
+
+int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d) {
+  double m[3][3];
+  double mag = 0;
+  for (int k = 0; k < 3; ++k) {
+    m[0][k] = b.d[k] - a.d[k];
+    m[1][k] = c.d[k] - a.d[k];
+    m[2][k] = d.d[k] - a.d[k];
+    mag = std::max({mag, std::fabs(a.d[k]), std::fabs(b.d[k]), std::fabs(c.d[k]), std::fabs(d.d[k])});
+  }
+  const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  // The doubles are within one ulp of the rationals (relative 2.2e-16 of |coordinate|):
+  // each entry is off by at most ~4.4e-16 mag, so the determinant by at most
+  // 6 * 3 * 4.4e-16 * mag * (2 mag)^2 < 3.2e-14 mag^3; 1e-13 is generous.
+  const double bound = 1e-13 * mag * mag * mag;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  mpq_class q[3][3];
+  for (int k = 0; k < 3; ++k) {
+    q[0][k] = b.q[k] - a.q[k];
+    q[1][k] = c.q[k] - a.q[k];
+    q[2][k] = d.q[k] - a.q[k];
+  }
+  const mpq_class e = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
+                      q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+  return sgn(e);
+}
+
+int perpendicular_dot_sign(const QPoint& u, const QPoint& w, const QPoint& x, const QPoint& y) {
+  // (x-u).(y-u) |d|^2 - ((x-u).d)((y-u).d), d = w - u: |d|^2 times the perpendicular dot.
+  mpq_class d[3], a[3], b[3];
+  for (int k = 0; k < 3; ++k) {
+    d[k] = w.q[k] - u.q[k];
+    a[k] = x.q[k] - u.q[k];
+    b[k] = y.q[k] - u.q[k];
+  }
+  const mpq_class dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const mpq_class ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const mpq_class ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+  const mpq_class bd = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
+  return sgn(mpq_class(ab * dd - ad * bd));
 }
 
 mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {

@@ -25,6 +25,12 @@ bool same_point(const QPoint& a, const QPoint& b);
 /// the sign of det[b-a, c-a, d-a]. Exact.
 int orient3d(const double* a, const double* b, const double* c, const double* d);
 
+/// Sign of det[b-a, c-a, d-a] for rational points (filter on the doubles, exact fallback).
+int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d);
+
+/// Sign of the dot product of the parts of (x - u) and (y - u) perpendicular to (w - u). Exact.
+int perpendicular_dot_sign(const QPoint& u, const QPoint& w, const QPoint& x, const QPoint& y);
+
 /// det[b-a, c-a, d-a] exactly.
 mpq_class orient3d_exact(const double* a, const double* b, const double* c, const double* d);
 

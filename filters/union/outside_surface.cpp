@@ -98,27 +98,36 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     const int g = group_of[3 * s + z];
     const int b = group_begin[g], e = group_begin[g + 1];
     if (e - b == 2) return he[b].side == 3 * s + z ? he[b + 1].side : he[b].side;
-    const V3 U = P(sub[s][z]), W = P(sub[s][(z + 1) % 3]), X = P(sub[s][(z + 2) % 3]);
-    const V3 d = unit(sub3(W, U));
-    auto perp = [&](const V3& Y) {
-      V3 r = sub3(Y, U);
-      const double t = dot(r, d);
-      for (int k = 0; k < 3; ++k) r[k] -= t * d[k];
-      return unit(r);
+    // Order the faces about the edge exactly: angle from s's half-plane, turning
+    // about U->W towards s's outside (right-hand rule). Quadrant 0: (0, pi), 1: pi,
+    // 2: (pi, 2 pi), 3: 2 pi (same half-plane as s); within 0 and 2 the orientation
+    // of the two half-planes orders them.
+    const QPoint& U = points[sub[s][z]];
+    const QPoint& W = points[sub[s][(z + 1) % 3]];
+    const QPoint& X = points[sub[s][(z + 2) % 3]];
+    auto third = [&](int side) -> const QPoint& { return points[sub[side / 3][(side % 3 + 2) % 3]]; };
+    auto quadrant = [&](int side) {
+      const int o = orient3d(U, W, X, third(side));
+      if (o > 0) return 0;
+      if (o < 0) return 2;
+      return perpendicular_dot_sign(U, W, X, third(side)) < 0 ? 1 : 3;
     };
-    const V3 rf = perp(X);
-    const V3 nf = cross(d, rf);  // towards the outside of s
-    int best = -1;
-    double best_angle = 1e300;
+    auto before = [&](int a, int qa, int c, int qc) {  // a comes before c
+      if (qa != qc) return qa < qc;
+      if (qa == 1 || qa == 3) return false;
+      return orient3d(U, W, third(a), third(c)) > 0;
+    };
+    int best = -1, best_q = 0;
     for (int i = b; i < e; ++i) {
       const int side = he[i].side;
       if (side == 3 * s + z) continue;
-      const int t = side / 3, y = side % 3;
-      if (inward && !out.kept[t]) continue;
-      const V3 rg = perp(P(sub[t][(y + 2) % 3]));
-      double a = std::atan2((inward ? -1 : 1) * dot(rg, nf), dot(rg, rf));
-      if (a <= 0) a += 2 * 3.14159265358979323846;
-      if (a < best_angle) { best_angle = a; best = side; }
+      if (inward && !out.kept[side / 3]) continue;
+      const int q = quadrant(side);
+      // Outward: the first face met; inward (turning the other way): the last.
+      if (best < 0 || (inward ? before(best, best_q, side, q) : before(side, q, best, best_q))) {
+        best = side;
+        best_q = q;
+      }
     }
     return best;
   };

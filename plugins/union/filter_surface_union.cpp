@@ -167,6 +167,7 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
       {"cut_faces", QVariant(r.cut_faces)},
       {"faces_removed", QVariant(r.faces_removed)},
       {"slivers_collapsed", QVariant(r.slivers_collapsed)},
+      {"orientation_conflicts", QVariant(r.orientation_conflicts)},
       {"vertices", QVariant(int(r.vertices.size()))},
       {"faces", QVariant(int(r.faces.size()))},
       {"min_angle", QVariant(r.min_angle_deg)},

@@ -407,3 +407,18 @@ def test_sliver_step_on_a_ten_sphere_cluster_leaves_no_face_under_5_degrees():
     assert r["bodies"] == 10
     assert angles(ms.mesh(1)).min() >= 5.0
     assert check_union(ms, 1) == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL)
+
+
+def test_bug_radial_order_at_an_edge_of_1e_16_between_nearly_coincident_poles():
+    # Found by fuzzing: C's top pole (0.6, 0.8, 0.5) and D's left pole (1.1 - 0.5, ...)
+    # differ by one ulp, so the cut has an edge of length ~1e-16; the radial order of the
+    # faces around it was taken from doubles and picked wrongly oriented faces (58
+    # orientation conflicts, duplicated faces). The order is now decided exactly.
+    ms = pymeshlab.MeshSet()
+    for off in ((0.6, 0.8, 0.0), (1.1, 0.8, 0.5)):
+        ms.create_sphere(radius=0.5, subdiv=2)
+        ms.compute_matrix_from_translation(axisx=off[0], axisy=off[1], axisz=off[2])
+    ref = reference([ms.mesh(0), ms.mesh(1)])
+    r = unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert r["orientation_conflicts"] == 0
+    assert check_union(ms, 2) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
