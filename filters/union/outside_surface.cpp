@@ -1,5 +1,7 @@
 #include "union/outside_surface.h"
 
+#include "union/exact.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -26,15 +28,22 @@ int find(std::vector<int>& uf, int x) {
   return x;
 }
 
-/// Generalized winding number of point p with respect to the faces of one body.
+/// Generalized winding number of point p with respect to the faces of one body; 0.5
+/// (undecided) when p lies exactly on one of the faces.
 double winding_number(const Soup& soup, const std::vector<int>& faces, const V3& p) {
   double total = 0;
   for (int f : faces) {
-    const V3 a = sub3(soup.vertex[soup.face[f][0]], p), b = sub3(soup.vertex[soup.face[f][1]], p),
-             c = sub3(soup.vertex[soup.face[f][2]], p);
+    const V3& A = soup.vertex[soup.face[f][0]];
+    const V3& B = soup.vertex[soup.face[f][1]];
+    const V3& C = soup.vertex[soup.face[f][2]];
+    const V3 a = sub3(A, p), b = sub3(B, p), c = sub3(C, p);
     const double la = std::sqrt(dot(a, a)), lb = std::sqrt(dot(b, b)), lc = std::sqrt(dot(c, c));
     const double num = dot(a, cross(b, c));
     const double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+    // On (or within rounding of) the face: this point decides nothing; the caller tries
+    // another. Only the choice of test point depends on this bound, not the result.
+    if (den <= 0 && (std::fabs(num) <= 1e-9 * la * lb * lc || orient3d(A.data(), B.data(), C.data(), p.data()) == 0))
+      return 0.5;
     total += 2 * std::atan2(num, den);
   }
   return total / (4 * 3.14159265358979323846);
@@ -43,8 +52,8 @@ double winding_number(const Soup& soup, const std::vector<int>& faces, const V3&
 }  // namespace
 
 Classification classify_outside(const PointTable& points, const std::vector<std::array<int, 3>>& sub,
-                                const std::vector<int>& sub_body, const std::vector<char>& dropped,
-                                const Soup& soup) {
+                                const std::vector<int>& sub_body, const std::vector<int>& sub_face,
+                                const std::vector<char>& dropped, const Soup& soup) {
   const int ns = int(sub.size());
   Classification out;
   out.kept.assign(ns, 0);
@@ -107,6 +116,8 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     const QPoint& X = points[sub[s][(z + 2) % 3]];
     auto third = [&](int side) -> const QPoint& { return points[sub[side / 3][(side % 3 + 2) % 3]]; };
     auto quadrant = [&](int side) {
+      // Pieces of the same input face lie in one plane, on opposite sides of the edge.
+      if (sub_face[side / 3] == sub_face[s]) return 1;
       const int o = orient3d(U, W, X, third(side));
       if (o > 0) return 0;
       if (o < 0) return 2;
@@ -115,6 +126,7 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     auto before = [&](int a, int qa, int c, int qc) {  // a comes before c
       if (qa != qc) return qa < qc;
       if (qa == 1 || qa == 3) return false;
+      // Same input face and same side of the edge cannot happen (a planar triangulation).
       return orient3d(U, W, third(a), third(c)) > 0;
     };
     int best = -1, best_q = 0;
@@ -167,15 +179,40 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
         body_box[soup.body[f]][k + 3] = std::max(body_box[soup.body[f]][k + 3], soup.vertex[soup.face[f][c]][k]);
       }
   }
+  // Test points of a piece: the centroids of its largest face and of a few others, and
+  // its extreme vertex. A piece never crosses another body, but it may touch one (at its
+  // extreme vertex, say) or lie on one (a coincident copy): a point on the other body's
+  // surface gives a winding number near 1/2 and decides nothing, so the first point with
+  // a clear answer decides; with none the piece only touches and stays.
+  std::vector<std::vector<V3>> samples(ns);
+  std::vector<double> largest_area(ns, -1);
+  std::vector<V3> largest_centroid(ns);
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    const int r = find(uf, s);
+    const V3 n = cross(sub3(P(sub[s][1]), P(sub[s][0])), sub3(P(sub[s][2]), P(sub[s][0])));
+    V3 c{0, 0, 0};
+    for (int z = 0; z < 3; ++z)
+      for (int k = 0; k < 3; ++k) c[k] += P(sub[s][z])[k] / 3;
+    if (dot(n, n) > largest_area[r]) { largest_area[r] = dot(n, n); largest_centroid[r] = c; }
+    if (samples[r].size() < 4 && dot(n, n) > 0) samples[r].push_back(c);
+  }
   std::vector<int> stack;
   for (int r : root_list) {
-    const V3 p = P(extreme[r]);
+    std::vector<V3> points_to_test{largest_centroid[r], P(extreme[r])};
+    points_to_test.insert(points_to_test.end(), samples[r].begin(), samples[r].end());
     bool inside = false;
     for (int b = 0; b < soup.body_count && !inside; ++b) {
       if (piece_bodies[r].count(b)) continue;
       const auto& bb = body_box[b];
-      if (p[0] < bb[0] || p[1] < bb[1] || p[2] < bb[2] || p[0] > bb[3] || p[1] > bb[4] || p[2] > bb[5]) continue;
-      inside = winding_number(soup, body_faces[b], p) > 0.5;
+      for (const V3& p : points_to_test) {
+        if (p[0] < bb[0] || p[1] < bb[1] || p[2] < bb[2] || p[0] > bb[3] || p[1] > bb[4] || p[2] > bb[5]) break;
+        const double w = winding_number(soup, body_faces[b], p);
+        if (std::fabs(w - 0.5) > 0.25) {
+          inside = w > 0.5;
+          break;
+        }
+      }
     }
     if (inside) { ++out.pieces_inside; continue; }
     const int s0 = start[r];

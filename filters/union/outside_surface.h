@@ -22,10 +22,12 @@ struct Classification {
   int open_sides = 0;            ///< kept face sides with no face across (must stay 0)
 };
 
-/// \param sub sub-faces (point indices), \param sub_body their bodies, \param dropped
-/// sub-faces already excluded (coplanar duplicates), \param soup the input bodies (for
-/// the point-in-body test of pieces that touch no other piece).
+/// \param sub sub-faces (point indices), \param sub_body their bodies, \param sub_face the
+/// input face each was cut from, \param dropped sub-faces already excluded (coplanar
+/// duplicates), \param soup the input bodies (for the point-in-body test of pieces that
+/// touch no other piece).
 Classification classify_outside(const PointTable& points, const std::vector<std::array<int, 3>>& sub,
-                                const std::vector<int>& sub_body, const std::vector<char>& dropped, const Soup& soup);
+                                const std::vector<int>& sub_body, const std::vector<int>& sub_face,
+                                const std::vector<char>& dropped, const Soup& soup);
 
 }  // namespace mr::surface_union

@@ -175,7 +175,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
 
   // 4. Outside surface.
   t = Clock::now();
-  const Classification cl = classify_outside(pts, sub, sub_body, dropped, soup);
+  const Classification cl = classify_outside(pts, sub, sub_body, sub_face, dropped, soup);
   r.orientation_conflicts = cl.orientation_conflicts;
   if (cl.open_sides > 0)
     throw AlgorithmFailure("the cut surface is not closed at " + std::to_string(cl.open_sides) +

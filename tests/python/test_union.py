@@ -422,3 +422,19 @@ def test_bug_radial_order_at_an_edge_of_1e_16_between_nearly_coincident_poles():
     r = unite(ms, bodies=LAYERS, sliver_angle=0)
     assert r["orientation_conflicts"] == 0
     assert check_union(ms, 2) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
+
+
+def test_bug_sphere_touching_a_cube_face_with_its_pole_was_removed():
+    # Found by fuzzing: the sphere's extreme vertex (its +x pole) lies on the cube's face,
+    # so the winding-number test at that vertex said "inside" and the sphere vanished.
+    # Pieces are now tested at points that decide clearly (face centroids first).
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(radius=0.5, subdiv=2)
+    ms.compute_matrix_from_translation(axisx=0, axisy=0.75, axisz=0.75)
+    sphere_volume = ms.get_geometric_measures()["mesh_volume"]
+    ms.create_cube(size=1)
+    ms.compute_matrix_from_translation(axisx=1, axisy=0.5, axisz=0.5)
+    r = unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert r["intersecting_pairs"] == 1  # they touch at one point
+    assert check_union(ms, 2) == pytest.approx(sphere_volume + 1.0, rel=1e-12)
+    assert ms.get_topological_measures()["connected_components_number"] == 2
