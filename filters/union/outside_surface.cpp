@@ -53,7 +53,8 @@ double winding_number(const Soup& soup, const std::vector<int>& faces, const V3&
 
 Classification classify_outside(const PointTable& points, const std::vector<std::array<int, 3>>& sub,
                                 const std::vector<int>& sub_body, const std::vector<int>& sub_face,
-                                const std::vector<char>& dropped, const Soup& soup) {
+                                const std::vector<char>& dropped, const Soup& soup,
+                                const std::vector<int>& body_group) {
   const int ns = int(sub.size());
   Classification out;
   out.kept.assign(ns, 0);
@@ -202,8 +203,11 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     std::vector<V3> points_to_test{largest_centroid[r], P(extreme[r])};
     points_to_test.insert(points_to_test.end(), samples[r].begin(), samples[r].end());
     bool inside = false;
+    const int group = body_group[*piece_bodies[r].begin()];
     for (int b = 0; b < soup.body_count && !inside; ++b) {
-      if (piece_bodies[r].count(b)) continue;
+      // Bodies meeting the piece's bodies (even only where their faces were dropped as
+      // duplicates) are handled by the fill, not by this test.
+      if (piece_bodies[r].count(b) || body_group[b] == group) continue;
       const auto& bb = body_box[b];
       for (const V3& p : points_to_test) {
         if (p[0] < bb[0] || p[1] < bb[1] || p[2] < bb[2] || p[0] > bb[3] || p[1] > bb[4] || p[2] > bb[5]) break;

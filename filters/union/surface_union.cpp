@@ -175,7 +175,11 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
 
   // 4. Outside surface.
   t = Clock::now();
-  const Classification cl = classify_outside(pts, sub, sub_body, sub_face, dropped, soup);
+  std::vector<int> body_group(soup.body_count);
+  std::iota(body_group.begin(), body_group.end(), 0);
+  for (const auto& [a, b] : body_pairs) body_group[find(body_group, a)] = find(body_group, b);
+  for (int b = 0; b < soup.body_count; ++b) body_group[b] = find(body_group, b);
+  const Classification cl = classify_outside(pts, sub, sub_body, sub_face, dropped, soup, body_group);
   r.orientation_conflicts = cl.orientation_conflicts;
   if (cl.open_sides > 0)
     throw AlgorithmFailure("the cut surface is not closed at " + std::to_string(cl.open_sides) +

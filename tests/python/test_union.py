@@ -438,3 +438,21 @@ def test_bug_sphere_touching_a_cube_face_with_its_pole_was_removed():
     assert r["intersecting_pairs"] == 1  # they touch at one point
     assert check_union(ms, 2) == pytest.approx(sphere_volume + 1.0, rel=1e-12)
     assert ms.get_topological_measures()["connected_components_number"] == 2
+
+
+def test_bug_identical_copy_inside_a_cluster_emptied_the_union():
+    # Found by fuzzing: body 4 is an exact copy of body 2, so all its faces are dropped as
+    # duplicates; the one piece of the arrangement was then tested against body 4 as if it
+    # did not meet it, found "inside", and the result was empty. Bodies connected through
+    # intersections are no longer used for that test.
+    ms0 = pymeshlab.MeshSet()
+    ms0.create_sphere(radius=0.5, subdiv=2)
+    v, f = ms0.current_mesh().vertex_matrix(), ms0.current_mesh().face_matrix()
+    spheres = [((0.5, 1, 0.5), 0.5), ((0.5, 1, 1), 1.5), ((0.5, 0, 0.5), 1.0), ((0, 1, 0.5), 1.0),
+               ((0.5, 0, 0.5), 1.0), ((1, 0, 0), 1.0), ((0, 0.5, 0.5), 1.5)]
+    ms = pymeshlab.MeshSet()
+    for centre, radius in spheres:
+        ms.add_mesh(pymeshlab.Mesh(v * radius * 2 + np.array(centre), f))
+    ref = reference([ms.mesh(i) for i in range(len(spheres))])
+    unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert check_union(ms, len(spheres)) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
