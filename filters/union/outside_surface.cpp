@@ -53,8 +53,8 @@ double winding_number(const Soup& soup, const std::vector<int>& faces, const V3&
 
 Classification classify_outside(const PointTable& points, const std::vector<std::array<int, 3>>& sub,
                                 const std::vector<int>& sub_body, const std::vector<int>& sub_face,
-                                const std::vector<char>& dropped, const Soup& soup,
-                                const std::vector<int>& body_group) {
+                                const std::vector<char>& dropped, const std::vector<int>& kept_copy_body,
+                                const Soup& soup) {
   const int ns = int(sub.size());
   Classification out;
   out.kept.assign(ns, 0);
@@ -158,14 +158,38 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     }
   }
   out.pieces = int(root_list.size());
+  // Faces at the extreme vertex: the one facing +x most is outside. Faces far smaller
+  // than the largest there are skipped: the normal of a face a few ulps wide is noise.
   std::vector<int> start(ns, -1);
-  std::vector<double> start_score(ns, -2);
+  std::vector<double> start_score(ns, -2), extreme_area(ns, 0);
   std::vector<std::set<int>> piece_bodies(ns);
+  auto at_extreme = [&](int s, int r) {
+    return sub[s][0] == extreme[r] || sub[s][1] == extreme[r] || sub[s][2] == extreme[r];
+  };
+  auto area2 = [&](int s) {
+    const V3 n = cross(sub3(P(sub[s][1]), P(sub[s][0])), sub3(P(sub[s][2]), P(sub[s][0])));
+    return std::sqrt(dot(n, n));
+  };
   for (int s = 0; s < ns; ++s) {
     if (dropped[s]) continue;
     const int r = find(uf, s);
     piece_bodies[r].insert(sub_body[s]);
-    if (sub[s][0] != extreme[r] && sub[s][1] != extreme[r] && sub[s][2] != extreme[r]) continue;
+    if (at_extreme(s, r)) extreme_area[r] = std::max(extreme_area[r], area2(s));
+  }
+  // A body whose faces were dropped as copies of a piece's faces lies on that piece:
+  // it belongs to the piece for the inside test below.
+  {
+    std::vector<std::set<int>> pieces_of_body(soup.body_count);
+    for (int s = 0; s < ns; ++s)
+      if (!dropped[s]) pieces_of_body[sub_body[s]].insert(find(uf, s));
+    for (int s = 0; s < ns; ++s)
+      if (dropped[s] && kept_copy_body[s] >= 0)
+        for (int r : pieces_of_body[kept_copy_body[s]]) piece_bodies[r].insert(sub_body[s]);
+  }
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    const int r = find(uf, s);
+    if (!at_extreme(s, r) || area2(s) < 1e-6 * extreme_area[r]) continue;
     const V3 n = unit(cross(sub3(P(sub[s][1]), P(sub[s][0])), sub3(P(sub[s][2]), P(sub[s][0]))));
     if (n[0] > start_score[r]) { start_score[r] = n[0]; start[r] = s; }
   }
@@ -203,11 +227,8 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     std::vector<V3> points_to_test{largest_centroid[r], P(extreme[r])};
     points_to_test.insert(points_to_test.end(), samples[r].begin(), samples[r].end());
     bool inside = false;
-    const int group = body_group[*piece_bodies[r].begin()];
     for (int b = 0; b < soup.body_count && !inside; ++b) {
-      // Bodies meeting the piece's bodies (even only where their faces were dropped as
-      // duplicates) are handled by the fill, not by this test.
-      if (piece_bodies[r].count(b) || body_group[b] == group) continue;
+      if (piece_bodies[r].count(b)) continue;
       const auto& bb = body_box[b];
       for (const V3& p : points_to_test) {
         if (p[0] < bb[0] || p[1] < bb[1] || p[2] < bb[2] || p[0] > bb[3] || p[1] > bb[4] || p[2] > bb[5]) break;

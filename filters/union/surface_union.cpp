@@ -133,6 +133,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   std::vector<char> sub_cut;  // from a face that was cut
   sub.reserve(soup.face.size() + 8 * cf.size());
   std::vector<char> dropped;
+  std::vector<int> kept_copy_body;  // for a dropped same-side copy: the body whose copy stays
   for (int f = 0; f < int(soup.face.size()); ++f) {
     const std::array<int, 3> corners{vertex_point[soup.face[f][0]], vertex_point[soup.face[f][1]],
                                      vertex_point[soup.face[f][2]]};
@@ -148,6 +149,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
       sub_face.push_back(f);
       sub_cut.push_back(it != cf.end());
       char drop = 0;
+      int copy_body = -1;
       if (it != cf.end() && !it->second.coplanar.empty()) {
         const Projection pr = face_projection(pts[corners[0]], pts[corners[1]], pts[corners[2]]);
         const QPoint &a = pts[sub[s][0]], &b = pts[sub[s][1]], &c = pts[sub[s][2]];
@@ -160,9 +162,11 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
                                      pr.j) > 0;
           // Same side: one copy stays (the lower body's). Opposite: solid on both sides.
           if (!same || soup.body[g] < soup.body[f]) drop = 1;
+          if (same && soup.body[g] < soup.body[f]) copy_body = soup.body[g];
         }
       }
       dropped.push_back(drop);
+      kept_copy_body.push_back(drop ? copy_body : -1);
     }
   }
   {  // Constructed points that ended up as vertices (some sections built on the way are unused).
@@ -175,12 +179,13 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
 
   // 4. Outside surface.
   t = Clock::now();
-  std::vector<int> body_group(soup.body_count);
-  std::iota(body_group.begin(), body_group.end(), 0);
-  for (const auto& [a, b] : body_pairs) body_group[find(body_group, a)] = find(body_group, b);
-  for (int b = 0; b < soup.body_count; ++b) body_group[b] = find(body_group, b);
-  const Classification cl = classify_outside(pts, sub, sub_body, sub_face, dropped, soup, body_group);
+  const Classification cl = classify_outside(pts, sub, sub_body, sub_face, dropped, kept_copy_body, soup);
   r.orientation_conflicts = cl.orientation_conflicts;
+  if (cl.orientation_conflicts > 0)
+    throw AlgorithmFailure(
+        "the outer surface could not be told apart where coincident faces of different bodies only "
+        "partly overlap (" + std::to_string(cl.orientation_conflicts) +
+        " ambiguous edges); move one of the touching bodies very slightly and retry");
   if (cl.open_sides > 0)
     throw AlgorithmFailure("the cut surface is not closed at " + std::to_string(cl.open_sides) +
                            " edges (internal error; please report the input)");
