@@ -45,7 +45,7 @@ QString FilterSurfaceUnionPlugin::filterInfo(ActionIDType) const {
 }
 
 FilterPlugin::FilterClass FilterSurfaceUnionPlugin::getClass(const QAction*) const {
-  return FilterPlugin::FilterClass(FilterPlugin::Remeshing | FilterPlugin::Layer);
+  return FilterPlugin::FilterClass(FilterPlugin::MeshCreation | FilterPlugin::Remeshing);
 }
 
 int FilterSurfaceUnionPlugin::getPreConditions(const QAction*) const { return MeshModel::MM_NONE; }
