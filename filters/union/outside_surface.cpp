@@ -92,12 +92,18 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
   std::iota(uf.begin(), uf.end(), 0);
   for (size_t g = 0; g + 1 < group_begin.size(); ++g) {
     const int b = group_begin[g], e = group_begin[g + 1];
-    bool mixed = e - b > 2;
-    for (int i = b + 1; i < e; ++i) {
-      mixed |= sub_body[he[i].side / 3] != sub_body[he[b].side / 3];
-      uf[find(uf, he[i].side / 3)] = find(uf, he[b].side / 3);
+    // Where bodies meet; copies lying on a lower body's faces do not count.
+    int originals = 0, first_body = -1;
+    bool mixed = false;
+    for (int i = b; i < e; ++i) {
+      const int f = he[i].side / 3;
+      if (i > b) uf[find(uf, f)] = find(uf, he[b].side / 3);
+      if (kept_copy_body[f] >= 0) continue;
+      ++originals;
+      if (first_body < 0) first_body = sub_body[f];
+      mixed |= sub_body[f] != first_body;
     }
-    if (mixed)
+    if (mixed || originals > 2)
       for (int i = b; i < e; ++i) out.line_edge[he[i].side] = 1;
   }
 
@@ -126,9 +132,11 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     };
     auto before = [&](int a, int qa, int c, int qc) {  // a comes before c
       if (qa != qc) return qa < qc;
-      if (qa == 1 || qa == 3) return false;
-      // Same input face and same side of the edge cannot happen (a planar triangulation).
-      return orient3d(U, W, third(a), third(c)) > 0;
+      // (Same input face and same side of the edge cannot happen: a planar triangulation.)
+      const int o = (qa == 0 || qa == 2) ? orient3d(U, W, third(a), third(c)) : 0;
+      if (o != 0) return o > 0;
+      // Coincident half-planes (copies of one face in different bodies): the lower body's first.
+      return sub_body[a / 3] < sub_body[c / 3];
     };
     int best = -1, best_q = 0;
     for (int i = b; i < e; ++i) {
@@ -183,7 +191,7 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     for (int s = 0; s < ns; ++s)
       if (!dropped[s]) pieces_of_body[sub_body[s]].insert(find(uf, s));
     for (int s = 0; s < ns; ++s)
-      if (dropped[s] && kept_copy_body[s] >= 0)
+      if (kept_copy_body[s] >= 0)
         for (int r : pieces_of_body[kept_copy_body[s]]) piece_bodies[r].insert(sub_body[s]);
   }
   for (int s = 0; s < ns; ++s) {

@@ -25,8 +25,8 @@ struct Classification {
 /// \param sub sub-faces (point indices), \param sub_body their bodies, \param sub_face the
 /// input face each was cut from, \param dropped sub-faces already excluded (coplanar
 /// duplicates), \param soup the input bodies (for the point-in-body test of pieces that
-/// touch no other piece), \param kept_copy_body for a sub-face dropped as a duplicate of a
-/// coplanar face of another body with the same orientation, that body (else -1).
+/// touch no other piece), \param kept_copy_body for a sub-face lying on a coplanar face of a
+/// lower body with the same orientation (a copy), that body (else -1).
 Classification classify_outside(const PointTable& points, const std::vector<std::array<int, 3>>& sub,
                                 const std::vector<int>& sub_body, const std::vector<int>& sub_face,
                                 const std::vector<char>& dropped, const std::vector<int>& kept_copy_body,

@@ -160,13 +160,17 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
           const auto& G = soup.face[g];
           const bool same = orient2d(pts[vertex_point[G[0]]], pts[vertex_point[G[1]]], pts[vertex_point[G[2]]], pr.i,
                                      pr.j) > 0;
-          // Same side: one copy stays (the lower body's). Opposite: solid on both sides.
-          if (!same || soup.body[g] < soup.body[f]) drop = 1;
-          if (same && soup.body[g] < soup.body[f]) copy_body = soup.body[g];
+          // Opposite sides: solid on both sides, both copies go. Same side: both stay
+          // through the fill, which always prefers the lower body's copy where they
+          // coincide, so the higher body's copy is never reached (dropping it before the
+          // fill would leave edges where only some copies of a partly overlapping pair
+          // are missing, and the fill could not tell the sheets apart there).
+          if (!same) drop = 1;
+          else if (soup.body[g] < soup.body[f]) copy_body = soup.body[g];
         }
       }
       dropped.push_back(drop);
-      kept_copy_body.push_back(drop ? copy_body : -1);
+      kept_copy_body.push_back(copy_body);
     }
   }
   {  // Constructed points that ended up as vertices (some sections built on the way are unused).
