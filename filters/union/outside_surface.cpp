@@ -153,6 +153,13 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     return best;
   };
 
+  auto lexicographically_greater = [](const QPoint& a, const QPoint& b) {
+    for (int k = 0; k < 3; ++k) {
+      const int c = compare(a, b, k);
+      if (c != 0) return c > 0;
+    }
+    return false;
+  };
   // Pieces: extreme vertex (largest x, then y, z) and the face there seen best from +x.
   std::vector<int> root_list;
   std::vector<int> extreme(ns, -1);  // per root: point index
@@ -162,27 +169,41 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     if (extreme[r] < 0) root_list.push_back(r);
     for (int z = 0; z < 3; ++z) {
       const int p = sub[s][z];
-      if (extreme[r] < 0 || points[p].d > points[extreme[r]].d) extreme[r] = p;
+      if (extreme[r] < 0 || lexicographically_greater(points[p], points[extreme[r]])) extreme[r] = p;
     }
   }
   out.pieces = int(root_list.size());
-  // Faces at the extreme vertex: the one facing +x most is outside. Faces far smaller
-  // than the largest there are skipped: the normal of a face a few ulps wide is noise.
+  // Faces at the extreme vertex: the one facing +x most is outside. Decided exactly:
+  // bodies touching there can have faces tilted against each other by 1e-16.
+  auto exact_normal = [&](int s, mpq_class* n) {
+    const QPoint &a = points[sub[s][0]], &b = points[sub[s][1]], &c = points[sub[s][2]];
+    mpq_class u[3], v[3];
+    for (int k = 0; k < 3; ++k) { u[k] = b.q[k] - a.q[k]; v[k] = c.q[k] - a.q[k]; }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+  };
+  // n_x / |n| of face a larger than of face b: compare n_x |n_x| / |n|^2 exactly.
+  auto faces_more_towards_x = [&](int a, int b) {
+    mpq_class na[3], nb[3];
+    exact_normal(a, na);
+    exact_normal(b, nb);
+    const mpq_class la = na[0] * na[0] + na[1] * na[1] + na[2] * na[2];
+    const mpq_class lb = nb[0] * nb[0] + nb[1] * nb[1] + nb[2] * nb[2];
+    if (sgn(la) == 0) return false;
+    if (sgn(lb) == 0) return true;
+    return na[0] * abs(na[0]) * lb > nb[0] * abs(nb[0]) * la;
+  };
   std::vector<int> start(ns, -1);
-  std::vector<double> start_score(ns, -2), extreme_area(ns, 0);
+
   std::vector<std::set<int>> piece_bodies(ns);
   auto at_extreme = [&](int s, int r) {
     return sub[s][0] == extreme[r] || sub[s][1] == extreme[r] || sub[s][2] == extreme[r];
-  };
-  auto area2 = [&](int s) {
-    const V3 n = cross(sub3(P(sub[s][1]), P(sub[s][0])), sub3(P(sub[s][2]), P(sub[s][0])));
-    return std::sqrt(dot(n, n));
   };
   for (int s = 0; s < ns; ++s) {
     if (dropped[s]) continue;
     const int r = find(uf, s);
     piece_bodies[r].insert(sub_body[s]);
-    if (at_extreme(s, r)) extreme_area[r] = std::max(extreme_area[r], area2(s));
   }
   // A body whose faces were dropped as copies of a piece's faces lies on that piece:
   // it belongs to the piece for the inside test below.
@@ -197,9 +218,8 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
   for (int s = 0; s < ns; ++s) {
     if (dropped[s]) continue;
     const int r = find(uf, s);
-    if (!at_extreme(s, r) || area2(s) < 1e-6 * extreme_area[r]) continue;
-    const V3 n = unit(cross(sub3(P(sub[s][1]), P(sub[s][0])), sub3(P(sub[s][2]), P(sub[s][0]))));
-    if (n[0] > start_score[r]) { start_score[r] = n[0]; start[r] = s; }
+    if (!at_extreme(s, r)) continue;
+    if (start[r] < 0 || faces_more_towards_x(s, start[r])) start[r] = s;
   }
   // Faces of each body, for the point-in-body test.
   std::vector<std::vector<int>> body_faces(soup.body_count);

@@ -478,14 +478,21 @@ def test_bug_sphere_inside_another_touching_it_was_kept():
     assert check_union(ms, len(spheres)) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
 
 
-def test_partly_overlapping_coincident_faces_fail_with_a_clear_message():
-    # Known limit (fuzzing, seed 654): a sphere scaled by 1/2 about the pole of another is
-    # inside it with coplanar faces around the shared pole that only partly overlap.
-    # The filter refuses rather than returning a non-manifold surface.
-    ms = _scaled_spheres([((0, 1, 1), 0.5), ((1, 0.5, 0.5), 0.5), ((0.5, 0.5, 0.5), 1.0)])
-    before = [snapshot(ms.mesh(i)) for i in range(3)]
-    with raises_on(ms, "coincident faces of different bodies only partly overlap"):
-        unite(ms, bodies=LAYERS)
-    assert ms.mesh_number() == 3
-    for i in range(3):
-        assert_unchanged(before[i], ms.mesh(i))
+def test_bug_start_face_chosen_from_rounded_normals_at_a_shared_pole():
+    # Found by fuzzing (seeds 654, 874, 934, 189): a sphere scaled by 1/2 about a pole of
+    # another lies inside it, with faces around the shared pole tilted against the big
+    # sphere's by ~1e-16. The fill's start face at the extreme vertex (that pole) was picked
+    # from double-precision normals and could be the inner sphere's face; the fill then ran
+    # on the wrong side (orientation conflicts). The choice is now exact.
+    spheres = [((0, 1, 1), 0.5), ((1, 0.5, 0.5), 0.5), ((0.5, 0.5, 0.5), 1.0)]
+    ms = _scaled_spheres(spheres)
+    ref = reference([ms.mesh(i) for i in range(3)])
+    r = unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert r["orientation_conflicts"] == 0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    assert ms.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
+    # Known limit: the exact result has faces 1e-16 apart here; rounded to doubles, 3-4 faces
+    # cross (docs/union.md, "Limits"). The sliver step, whose moves are checked exactly,
+    # is not asked to repair that.
+    assert self_intersecting_faces(ms.current_mesh()) <= 8  # (MeshLab's flags vary by run)
