@@ -99,6 +99,7 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   features::Params fp;
   fp.ridge_angle_deg = params.ridge_angle_deg;
   fp.corner_angle_deg = params.corner_angle_deg;
+  fp.use_selected_edges_as_ridges = params.use_selected_edges_as_ridges;
   const features::Result fr = features::detect(input, fp);
   result.corners = int(fr.corners.size());
   result.lines = int(fr.lines.size());

@@ -29,6 +29,7 @@ struct Params {
   double gradation = 1.3;          ///< size growth limit per element (>= 1)
   Recovery recovery = Recovery::Linear;
   int improvement_iterations = 3;  ///< swap and smoothing sweeps (0 = off)
+  bool use_selected_edges_as_ridges = false;  ///< also keep the input's face-edge selection (FaceEdgeS) as ridges
   std::vector<Point3> source_points;  ///< point sources of size
   std::vector<double> source_sizes;
   /// Progress in percent with a message; may be empty.

@@ -66,6 +66,9 @@ RichParameterList Remeshing::initParameterList(const QAction*, const MeshDocumen
                          "(from positions and normals) surface through the input. Feature points never move."));
   list.addParam(RichInt("improvement_iterations", d.improvement_iterations, "Improvement sweeps",
                         "Sweeps of edge swaps and smoothing that only raise the minimum angle (0 = off)."));
+  list.addParam(RichBool("use_selected_edges_as_ridges", d.use_selected_edges_as_ridges, "Keep selected edges as ridges",
+                         "Also keep the current per-face-edge selection as feature lines (e.g. the intersection "
+                         "lines a union selects), besides the edges the ridge angle finds."));
   list.addParam(RichBool("use_size_source", false, "Use a size source layer",
                          "Limit the size near the vertices of another layer, each vertex carrying the wanted size "
                          "in its vertex quality."));
@@ -92,6 +95,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
   if (recovery < 0 || recovery > 3) throw MLException(QString(name) + ": recovery must be 0..3");
   p.recovery = mr::remesh::Recovery(recovery);
   p.improvement_iterations = params.getInt("improvement_iterations");
+  p.use_selected_edges_as_ridges = params.getBool("use_selected_edges_as_ridges");
   if (params.getBool("use_size_source")) {
     const MeshModel* source = md.getMesh(params.getMeshId("size_source"));
     if (source == nullptr) throw MLException(QString(name) + ": the size source layer does not exist");

@@ -1,0 +1,61 @@
+// Exact geometry for the union: points with rational coordinates (GMP) and
+// orientation predicates that first try a floating-point filter and fall back to
+// exact rational arithmetic, so no tolerance ever decides a topological question.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <array>
+
+namespace mr::surface_union {
+
+/// A point with exact rational coordinates and their truncated (towards zero) double
+/// approximation (the same rational always gives the same doubles).
+struct QPoint {
+  std::array<mpq_class, 3> q;
+  std::array<double, 3> d;
+};
+
+QPoint make_point(const std::array<double, 3>& p);
+QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z);
+bool same_point(const QPoint& a, const QPoint& b);
+
+/// Sign of the signed volume of tetrahedron (a,b,c,d) for double inputs: +1 when d
+/// lies on the side of plane (a,b,c) its normal (b-a)x(c-a) points away from... i.e.
+/// the sign of det[b-a, c-a, d-a]. Exact.
+int orient3d(const double* a, const double* b, const double* c, const double* d);
+
+/// Sign of det[b-a, c-a, d-a] for rational points (filter on the doubles, exact fallback).
+int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d);
+
+/// Sign of the dot product of the parts of (x - u) and (y - u) perpendicular to (w - u). Exact.
+int perpendicular_dot_sign(const QPoint& u, const QPoint& w, const QPoint& x, const QPoint& y);
+
+/// det[b-a, c-a, d-a] exactly.
+mpq_class orient3d_exact(const double* a, const double* b, const double* c, const double* d);
+
+/// Sign of det[b-a, c-a] of the projections of a, b, c on axes (i, j). Exact.
+int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
+
+/// det[b-a, c-a] on axes (i, j), exactly.
+mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
+
+/// The point where segment (a, b) crosses the plane of (f0, f1, f2), exactly; a and b
+/// must lie strictly on opposite sides. Computed with integers (all inputs scaled to
+/// one power of two), so only the final coordinates are reduced.
+QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2);
+
+/// a + t (b - a), exactly.
+QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t);
+
+/// Two axes (i, j) on which triangle (a, b, c) projects without degenerating and
+/// counter-clockwise (orient2d > 0): the plane of a face in 2D.
+struct Projection {
+  int i, j;
+};
+Projection face_projection(const QPoint& a, const QPoint& b, const QPoint& c);
+
+/// Exact comparison of coordinate `axis`: -1, 0, +1.
+int compare(const QPoint& a, const QPoint& b, int axis);
+
+}  // namespace mr::surface_union

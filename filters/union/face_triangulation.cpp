@@ -1,0 +1,284 @@
+#include "union/face_triangulation.h"
+
+#include "common/errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace mr::surface_union {
+
+namespace {
+
+uint64_t key(int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); }
+
+class FaceTriangulator {
+public:
+  FaceTriangulator(PointTable& points, const std::array<int, 3>& corners)
+      : pts_(points), pr_(face_projection(points[corners[0]], points[corners[1]], points[corners[2]])) {
+    for (int c : corners) ids_.push_back(c);
+  }
+
+  void run(const FaceConstraints& c, std::vector<std::array<int, 3>>& out);
+
+private:
+  const QPoint& P(int local) const { return pts_[ids_[local]]; }
+  int orient(int a, int b, int c) const { return orient2d(P(a), P(b), P(c), pr_.i, pr_.j); }
+  bool in_box(int p, int a, int b) const;
+  bool between(int p, int a, int b) const;
+  std::vector<std::array<int, 2>> split_at_points(const std::vector<std::array<int, 2>>& segs) const;
+  bool add_crossings(const std::vector<std::array<int, 2>>& segs);
+  void insert_point(int p);
+  void recover(int a, int b);
+  void improve();
+  bool crosses(int a, int b, int u, int v) const;
+  int third(int t, int u, int v) const;
+  void set_tri(int t, int a, int b, int c);
+  void clear_tri(int t);
+  int new_tri() { tri_.push_back({-1, -1, -1}); return int(tri_.size()) - 1; }
+
+  PointTable& pts_;
+  Projection pr_;
+  std::vector<int> ids_;  // local -> point-table index
+  std::unordered_map<int, int> local_of_;
+  std::vector<std::array<int, 3>> tri_;
+  std::unordered_map<uint64_t, int> edge_;  // directed edge -> triangle
+  std::unordered_set<uint64_t> constrained_;  // undirected (min, max)
+};
+
+bool FaceTriangulator::in_box(int p, int a, int b) const {
+  for (int k : {pr_.i, pr_.j})
+    if (P(p).d[k] < std::min(P(a).d[k], P(b).d[k]) || P(p).d[k] > std::max(P(a).d[k], P(b).d[k])) return false;
+  return true;
+}
+
+// p strictly inside segment (a, b), given that it is collinear.
+bool FaceTriangulator::between(int p, int a, int b) const {
+  for (int k : {pr_.i, pr_.j}) {
+    const int ca = compare(P(a), P(b), k);
+    if (ca == 0) continue;
+    const int s1 = compare(P(a), P(p), k), s2 = compare(P(p), P(b), k);
+    return s1 == ca && s2 == ca;
+  }
+  return false;
+}
+
+std::vector<std::array<int, 2>> FaceTriangulator::split_at_points(const std::vector<std::array<int, 2>>& segs) const {
+  std::vector<std::array<int, 2>> out;
+  const int n = int(ids_.size());
+  for (const auto& s : segs) {
+    const int a = s[0], b = s[1];
+    std::vector<int> on;
+    for (int p = 0; p < n; ++p)
+      if (p != a && p != b && in_box(p, a, b) && orient(a, b, p) == 0 && between(p, a, b)) on.push_back(p);
+    int axis = compare(P(a), P(b), pr_.i) != 0 ? pr_.i : pr_.j;
+    const bool up = compare(P(a), P(b), axis) < 0;
+    std::sort(on.begin(), on.end(), [&](int x, int y) { return compare(P(x), P(y), axis) < 0; });
+    if (!up) std::reverse(on.begin(), on.end());
+    int prev = a;
+    for (int p : on) { out.push_back({std::min(prev, p), std::max(prev, p)}); prev = p; }
+    out.push_back({std::min(prev, b), std::max(prev, b)});
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+bool FaceTriangulator::crosses(int a, int b, int u, int v) const {
+  if (u == a || u == b || v == a || v == b) return false;
+  const int o1 = orient(a, b, u), o2 = orient(a, b, v);
+  if (o1 * o2 >= 0) return false;
+  const int o3 = orient(u, v, a), o4 = orient(u, v, b);
+  return o3 * o4 < 0;
+}
+
+bool FaceTriangulator::add_crossings(const std::vector<std::array<int, 2>>& segs) {
+  bool any = false;
+  const size_t n = segs.size();
+  for (size_t x = 0; x < n; ++x)
+    for (size_t y = x + 1; y < n; ++y) {
+      const int a = segs[x][0], b = segs[x][1], c = segs[y][0], d = segs[y][1];
+      bool disjoint = false;
+      for (int k : {pr_.i, pr_.j})
+        if (std::max(P(a).d[k], P(b).d[k]) < std::min(P(c).d[k], P(d).d[k]) ||
+            std::max(P(c).d[k], P(d).d[k]) < std::min(P(a).d[k], P(b).d[k]))
+          disjoint = true;
+      if (disjoint || !crosses(a, b, c, d)) continue;
+      const mpq_class oa = orient2d_exact(P(c), P(d), P(a), pr_.i, pr_.j);
+      const mpq_class ob = orient2d_exact(P(c), P(d), P(b), pr_.i, pr_.j);
+      const int id = pts_.insert(lerp(P(a), P(b), oa / (oa - ob)));
+      if (!local_of_.count(id)) {
+        local_of_[id] = int(ids_.size());
+        ids_.push_back(id);
+      }
+      any = true;
+    }
+  return any;
+}
+
+int FaceTriangulator::third(int t, int u, int v) const {
+  for (int x : tri_[t])
+    if (x != u && x != v) return x;
+  return -1;
+}
+
+void FaceTriangulator::set_tri(int t, int a, int b, int c) {
+  tri_[t] = {a, b, c};
+  edge_[key(a, b)] = t;
+  edge_[key(b, c)] = t;
+  edge_[key(c, a)] = t;
+}
+
+void FaceTriangulator::clear_tri(int t) {
+  const auto& v = tri_[t];
+  for (int z = 0; z < 3; ++z) {
+    auto it = edge_.find(key(v[z], v[(z + 1) % 3]));
+    if (it != edge_.end() && it->second == t) edge_.erase(it);
+  }
+}
+
+void FaceTriangulator::insert_point(int p) {
+  for (int t = 0; t < int(tri_.size()); ++t) {
+    const auto v = tri_[t];
+    int o[3];
+    bool outside = false;
+    for (int z = 0; z < 3 && !outside; ++z) {
+      o[z] = orient(v[z], v[(z + 1) % 3], p);
+      outside = o[z] < 0;
+    }
+    if (outside) continue;
+    int on = -1;
+    for (int z = 0; z < 3; ++z)
+      if (o[z] == 0) on = z;
+    if (on < 0) {
+      clear_tri(t);
+      set_tri(t, v[0], v[1], p);
+      set_tri(new_tri(), v[1], v[2], p);
+      set_tri(new_tri(), v[2], v[0], p);
+      return;
+    }
+    const int a = v[on], b = v[(on + 1) % 3], c = v[(on + 2) % 3];
+    auto it = edge_.find(key(b, a));
+    const int u = it == edge_.end() ? -1 : it->second;
+    clear_tri(t);
+    set_tri(t, a, p, c);
+    set_tri(new_tri(), p, b, c);
+    if (u >= 0) {
+      const int d = third(u, a, b);
+      clear_tri(u);
+      set_tri(u, b, p, d);
+      set_tri(new_tri(), p, a, d);
+    }
+    return;
+  }
+  throw AlgorithmFailure("union: an intersection point fell outside its face (internal error)");
+}
+
+void FaceTriangulator::recover(int a, int b) {
+  constrained_.insert(key(std::min(a, b), std::max(a, b)));
+  if (edge_.count(key(a, b)) || edge_.count(key(b, a))) return;
+  std::deque<std::array<int, 2>> queue;
+  for (const auto& v : tri_)
+    for (int z = 0; z < 3; ++z) {
+      const int u = v[z], w = v[(z + 1) % 3];
+      if (u < w && crosses(a, b, u, w)) queue.push_back({u, w});
+    }
+  size_t guard = 0;
+  const size_t limit = 100 * (queue.size() + 10) * (queue.size() + 10);
+  while (!queue.empty()) {
+    if (++guard > limit) throw AlgorithmFailure("union: could not recover an intersection segment in a face");
+    const auto [u, v] = queue.front();
+    queue.pop_front();
+    auto i1 = edge_.find(key(u, v)), i2 = edge_.find(key(v, u));
+    if (i1 == edge_.end() || i2 == edge_.end()) continue;  // no longer an edge
+    const int t1 = i1->second, t2 = i2->second;
+    const int c = third(t1, u, v), d = third(t2, v, u);
+    if (orient(u, d, c) > 0 && orient(d, v, c) > 0) {
+      clear_tri(t1);
+      clear_tri(t2);
+      set_tri(t1, u, d, c);
+      set_tri(t2, d, v, c);
+      if (crosses(a, b, c, d)) queue.push_back({c, d});
+    } else {
+      queue.push_back({u, v});
+    }
+  }
+}
+
+double angle_at(const QPoint& o, const QPoint& p, const QPoint& q) {
+  double u[3], v[3];
+  for (int k = 0; k < 3; ++k) { u[k] = p.d[k] - o.d[k]; v[k] = q.d[k] - o.d[k]; }
+  const double dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
+  return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot);
+}
+
+// Flips unconstrained edges towards Delaunay, measured in 3D (the projection distorts angles).
+void FaceTriangulator::improve() {
+  const double pi = 3.14159265358979323846;
+  for (int pass = 0; pass < 50; ++pass) {
+    int flips = 0;
+    for (int t1 = 0; t1 < int(tri_.size()); ++t1) {
+      for (int z = 0; z < 3; ++z) {
+        const int u = tri_[t1][z], v = tri_[t1][(z + 1) % 3];
+        if (constrained_.count(key(std::min(u, v), std::max(u, v)))) continue;
+        auto it = edge_.find(key(v, u));
+        if (it == edge_.end()) continue;
+        const int t2 = it->second;
+        const int c = third(t1, u, v), d = third(t2, v, u);
+        if (angle_at(P(c), P(u), P(v)) + angle_at(P(d), P(u), P(v)) <= pi + 1e-9) continue;
+        if (!(orient(u, d, c) > 0 && orient(d, v, c) > 0)) continue;
+        clear_tri(t1);
+        clear_tri(t2);
+        set_tri(t1, u, d, c);
+        set_tri(t2, d, v, c);
+        ++flips;
+        break;
+      }
+    }
+    if (flips == 0) break;
+  }
+}
+
+void FaceTriangulator::run(const FaceConstraints& c, std::vector<std::array<int, 3>>& out) {
+  for (int z = 0; z < 3; ++z) local_of_[ids_[z]] = z;
+  auto local = [&](int id) {
+    auto it = local_of_.find(id);
+    if (it != local_of_.end()) return it->second;
+    local_of_[id] = int(ids_.size());
+    ids_.push_back(id);
+    return int(ids_.size()) - 1;
+  };
+  std::vector<std::array<int, 2>> segs;
+  for (int p : c.points) local(p);
+  for (const auto& s : c.segments) {
+    const int a = local(s[0]), b = local(s[1]);
+    if (a != b) segs.push_back({std::min(a, b), std::max(a, b)});
+  }
+  std::sort(segs.begin(), segs.end());
+  segs.erase(std::unique(segs.begin(), segs.end()), segs.end());
+  segs = split_at_points(segs);
+  if (add_crossings(segs)) segs = split_at_points(segs);
+
+  tri_.clear();
+  edge_.clear();
+  tri_.push_back({-1, -1, -1});
+  set_tri(0, 0, 1, 2);
+  for (int p = 3; p < int(ids_.size()); ++p) insert_point(p);
+  for (const auto& s : segs) recover(s[0], s[1]);
+  improve();
+  for (const auto& v : tri_) out.push_back({ids_[v[0]], ids_[v[1]], ids_[v[2]]});
+}
+
+}  // namespace
+
+int triangulate_face(PointTable& points, const std::array<int, 3>& corners, const FaceConstraints& c,
+                     std::vector<std::array<int, 3>>& out) {
+  const size_t before = out.size();
+  FaceTriangulator(points, corners).run(c, out);
+  return int(out.size() - before);
+}
+
+}  // namespace mr::surface_union

@@ -1,0 +1,308 @@
+#include "union/outside_surface.h"
+
+#include "union/exact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+namespace mr::surface_union {
+
+namespace {
+
+using V3 = std::array<double, 3>;
+V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+V3 unit(V3 a) {
+  const double n = std::sqrt(dot(a, a));
+  if (n > 0) for (double& x : a) x /= n;
+  return a;
+}
+
+int find(std::vector<int>& uf, int x) {
+  while (uf[x] != x) x = uf[x] = uf[uf[x]];
+  return x;
+}
+
+/// Generalized winding number of point p with respect to the faces of one body; 0.5
+/// (undecided) when p lies exactly on one of the faces.
+double winding_number(const Soup& soup, const std::vector<int>& faces, const V3& p) {
+  double total = 0;
+  for (int f : faces) {
+    const V3& A = soup.vertex[soup.face[f][0]];
+    const V3& B = soup.vertex[soup.face[f][1]];
+    const V3& C = soup.vertex[soup.face[f][2]];
+    const V3 a = sub3(A, p), b = sub3(B, p), c = sub3(C, p);
+    const double la = std::sqrt(dot(a, a)), lb = std::sqrt(dot(b, b)), lc = std::sqrt(dot(c, c));
+    const double num = dot(a, cross(b, c));
+    const double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+    // On (or within rounding of) the face: this point decides nothing; the caller tries
+    // another. Only the choice of test point depends on this bound, not the result.
+    if (den <= 0 && (std::fabs(num) <= 1e-9 * la * lb * lc || orient3d(A.data(), B.data(), C.data(), p.data()) == 0))
+      return 0.5;
+    total += 2 * std::atan2(num, den);
+  }
+  return total / (4 * 3.14159265358979323846);
+}
+
+}  // namespace
+
+Classification classify_outside(const PointTable& points, const std::vector<std::array<int, 3>>& sub,
+                                const std::vector<int>& sub_body, const std::vector<int>& sub_face,
+                                const std::vector<char>& dropped, const std::vector<int>& kept_copy_body,
+                                const Soup& soup) {
+  const int ns = int(sub.size());
+  Classification out;
+  out.kept.assign(ns, 0);
+  out.partner.assign(3 * size_t(ns), -1);
+  out.line_edge.assign(3 * size_t(ns), 0);
+  auto P = [&](int id) -> V3 { return points[id].d; };
+
+  // Half-edges grouped by undirected edge.
+  struct HalfEdge {
+    uint64_t key;
+    int side;  // 3*s + z
+  };
+  std::vector<HalfEdge> he;
+  he.reserve(3 * size_t(ns));
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    for (int z = 0; z < 3; ++z) {
+      const int u = sub[s][z], w = sub[s][(z + 1) % 3];
+      he.push_back({(uint64_t(uint32_t(std::min(u, w))) << 32) | uint32_t(std::max(u, w)), 3 * s + z});
+    }
+  }
+  std::sort(he.begin(), he.end(), [](const HalfEdge& a, const HalfEdge& b) {
+    return a.key < b.key || (a.key == b.key && a.side < b.side);
+  });
+  std::vector<int> group_begin;
+  std::vector<int> group_of(3 * size_t(ns), -1);
+  for (size_t i = 0; i < he.size(); ++i) {
+    if (i == 0 || he[i].key != he[i - 1].key) group_begin.push_back(int(i));
+    group_of[he[i].side] = int(group_begin.size()) - 1;
+  }
+  group_begin.push_back(int(he.size()));
+
+  // Intersection edges and pieces.
+  std::vector<int> uf(ns);
+  std::iota(uf.begin(), uf.end(), 0);
+  for (size_t g = 0; g + 1 < group_begin.size(); ++g) {
+    const int b = group_begin[g], e = group_begin[g + 1];
+    // Where bodies meet; copies lying on a lower body's faces do not count.
+    int originals = 0, first_body = -1;
+    bool mixed = false;
+    for (int i = b; i < e; ++i) {
+      const int f = he[i].side / 3;
+      if (i > b) uf[find(uf, f)] = find(uf, he[b].side / 3);
+      if (kept_copy_body[f] >= 0) continue;
+      ++originals;
+      if (first_body < 0) first_body = sub_body[f];
+      mixed |= sub_body[f] != first_body;
+    }
+    if (mixed || originals > 2)
+      for (int i = b; i < e; ++i) out.line_edge[he[i].side] = 1;
+  }
+
+  // The visible neighbour across side 3*s+z.
+  // With `inward`, turns the other way among kept faces only (the solid-side
+  // neighbour, which keeps bodies that merely touch along an edge apart).
+  auto across = [&](int s, int z, bool inward) -> int {
+    const int g = group_of[3 * s + z];
+    const int b = group_begin[g], e = group_begin[g + 1];
+    if (e - b == 2) return he[b].side == 3 * s + z ? he[b + 1].side : he[b].side;
+    // Order the faces about the edge exactly: angle from s's half-plane, turning
+    // about U->W towards s's outside (right-hand rule). Quadrant 0: (0, pi), 1: pi,
+    // 2: (pi, 2 pi), 3: 2 pi (same half-plane as s); within 0 and 2 the orientation
+    // of the two half-planes orders them.
+    const QPoint& U = points[sub[s][z]];
+    const QPoint& W = points[sub[s][(z + 1) % 3]];
+    const QPoint& X = points[sub[s][(z + 2) % 3]];
+    auto third = [&](int side) -> const QPoint& { return points[sub[side / 3][(side % 3 + 2) % 3]]; };
+    auto quadrant = [&](int side) {
+      // Pieces of the same input face lie in one plane, on opposite sides of the edge.
+      if (sub_face[side / 3] == sub_face[s]) return 1;
+      const int o = orient3d(U, W, X, third(side));
+      if (o > 0) return 0;
+      if (o < 0) return 2;
+      return perpendicular_dot_sign(U, W, X, third(side)) < 0 ? 1 : 3;
+    };
+    auto before = [&](int a, int qa, int c, int qc) {  // a comes before c
+      if (qa != qc) return qa < qc;
+      // (Same input face and same side of the edge cannot happen: a planar triangulation.)
+      const int o = (qa == 0 || qa == 2) ? orient3d(U, W, third(a), third(c)) : 0;
+      if (o != 0) return o > 0;
+      // Coincident half-planes (copies of one face in different bodies): the lower body's first.
+      return sub_body[a / 3] < sub_body[c / 3];
+    };
+    int best = -1, best_q = 0;
+    for (int i = b; i < e; ++i) {
+      const int side = he[i].side;
+      if (side == 3 * s + z) continue;
+      if (inward && !out.kept[side / 3]) continue;
+      const int q = quadrant(side);
+      // Outward: the first face met; inward (turning the other way): the last.
+      if (best < 0 || (inward ? before(best, best_q, side, q) : before(side, q, best, best_q))) {
+        best = side;
+        best_q = q;
+      }
+    }
+    return best;
+  };
+
+  auto lexicographically_greater = [](const QPoint& a, const QPoint& b) {
+    for (int k = 0; k < 3; ++k) {
+      const int c = compare(a, b, k);
+      if (c != 0) return c > 0;
+    }
+    return false;
+  };
+  // Pieces: extreme vertex (largest x, then y, z) and the face there seen best from +x.
+  std::vector<int> root_list;
+  std::vector<int> extreme(ns, -1);  // per root: point index
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    const int r = find(uf, s);
+    if (extreme[r] < 0) root_list.push_back(r);
+    for (int z = 0; z < 3; ++z) {
+      const int p = sub[s][z];
+      if (extreme[r] < 0 || lexicographically_greater(points[p], points[extreme[r]])) extreme[r] = p;
+    }
+  }
+  out.pieces = int(root_list.size());
+  // Faces at the extreme vertex: the one facing +x most is outside. Decided exactly:
+  // bodies touching there can have faces tilted against each other by 1e-16.
+  auto exact_normal = [&](int s, mpq_class* n) {
+    const QPoint &a = points[sub[s][0]], &b = points[sub[s][1]], &c = points[sub[s][2]];
+    mpq_class u[3], v[3];
+    for (int k = 0; k < 3; ++k) { u[k] = b.q[k] - a.q[k]; v[k] = c.q[k] - a.q[k]; }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+  };
+  // n_x / |n| of face a larger than of face b: compare n_x |n_x| / |n|^2 exactly.
+  auto faces_more_towards_x = [&](int a, int b) {
+    mpq_class na[3], nb[3];
+    exact_normal(a, na);
+    exact_normal(b, nb);
+    const mpq_class la = na[0] * na[0] + na[1] * na[1] + na[2] * na[2];
+    const mpq_class lb = nb[0] * nb[0] + nb[1] * nb[1] + nb[2] * nb[2];
+    if (sgn(la) == 0) return false;
+    if (sgn(lb) == 0) return true;
+    return na[0] * abs(na[0]) * lb > nb[0] * abs(nb[0]) * la;
+  };
+  std::vector<int> start(ns, -1);
+
+  std::vector<std::set<int>> piece_bodies(ns);
+  auto at_extreme = [&](int s, int r) {
+    return sub[s][0] == extreme[r] || sub[s][1] == extreme[r] || sub[s][2] == extreme[r];
+  };
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    const int r = find(uf, s);
+    piece_bodies[r].insert(sub_body[s]);
+  }
+  // A body whose faces were dropped as copies of a piece's faces lies on that piece:
+  // it belongs to the piece for the inside test below.
+  {
+    std::vector<std::set<int>> pieces_of_body(soup.body_count);
+    for (int s = 0; s < ns; ++s)
+      if (!dropped[s]) pieces_of_body[sub_body[s]].insert(find(uf, s));
+    for (int s = 0; s < ns; ++s)
+      if (kept_copy_body[s] >= 0)
+        for (int r : pieces_of_body[kept_copy_body[s]]) piece_bodies[r].insert(sub_body[s]);
+  }
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    const int r = find(uf, s);
+    if (!at_extreme(s, r)) continue;
+    if (start[r] < 0 || faces_more_towards_x(s, start[r])) start[r] = s;
+  }
+  // Faces of each body, for the point-in-body test.
+  std::vector<std::vector<int>> body_faces(soup.body_count);
+  std::vector<std::array<double, 6>> body_box(soup.body_count, {1e300, 1e300, 1e300, -1e300, -1e300, -1e300});
+  for (int f = 0; f < int(soup.face.size()); ++f) {
+    body_faces[soup.body[f]].push_back(f);
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) {
+        body_box[soup.body[f]][k] = std::min(body_box[soup.body[f]][k], soup.vertex[soup.face[f][c]][k]);
+        body_box[soup.body[f]][k + 3] = std::max(body_box[soup.body[f]][k + 3], soup.vertex[soup.face[f][c]][k]);
+      }
+  }
+  // Test points of a piece: the centroids of its largest face and of a few others, and
+  // its extreme vertex. A piece never crosses another body, but it may touch one (at its
+  // extreme vertex, say) or lie on one (a coincident copy): a point on the other body's
+  // surface gives a winding number near 1/2 and decides nothing, so the first point with
+  // a clear answer decides; with none the piece only touches and stays.
+  std::vector<std::vector<V3>> samples(ns);
+  std::vector<double> largest_area(ns, -1);
+  std::vector<V3> largest_centroid(ns);
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    const int r = find(uf, s);
+    const V3 n = cross(sub3(P(sub[s][1]), P(sub[s][0])), sub3(P(sub[s][2]), P(sub[s][0])));
+    V3 c{0, 0, 0};
+    for (int z = 0; z < 3; ++z)
+      for (int k = 0; k < 3; ++k) c[k] += P(sub[s][z])[k] / 3;
+    if (dot(n, n) > largest_area[r]) { largest_area[r] = dot(n, n); largest_centroid[r] = c; }
+    if (samples[r].size() < 4 && dot(n, n) > 0) samples[r].push_back(c);
+  }
+  std::vector<int> stack;
+  for (int r : root_list) {
+    std::vector<V3> points_to_test{largest_centroid[r], P(extreme[r])};
+    points_to_test.insert(points_to_test.end(), samples[r].begin(), samples[r].end());
+    bool inside = false;
+    for (int b = 0; b < soup.body_count && !inside; ++b) {
+      if (piece_bodies[r].count(b)) continue;
+      const auto& bb = body_box[b];
+      for (const V3& p : points_to_test) {
+        if (p[0] < bb[0] || p[1] < bb[1] || p[2] < bb[2] || p[0] > bb[3] || p[1] > bb[4] || p[2] > bb[5]) break;
+        const double w = winding_number(soup, body_faces[b], p);
+        if (std::fabs(w - 0.5) > 0.25) {
+          inside = w > 0.5;
+          break;
+        }
+      }
+    }
+    if (inside) { ++out.pieces_inside; continue; }
+    const int s0 = start[r];
+    if (s0 < 0) continue;  // no usable face at the extreme vertex (all degenerate): leave the piece out
+    out.kept[s0] = 1;
+    stack.push_back(s0);
+    while (!stack.empty()) {
+      const int s = stack.back();
+      stack.pop_back();
+      for (int z = 0; z < 3; ++z) {
+        const int side = across(s, z, false);
+        if (side < 0) {  // an edge with one face: the arrangement is not closed here
+          ++out.open_sides;
+          continue;
+        }
+        out.partner[3 * s + z] = side;
+        const int t = side / 3, y = side % 3;
+        if (sub[t][y] != sub[s][(z + 1) % 3]) ++out.orientation_conflicts;
+        if (!out.kept[t]) { out.kept[t] = 1; stack.push_back(t); }
+      }
+    }
+  }
+  // Shells: at edges where more than two kept faces meet, pair each with its
+  // solid-side neighbour instead.
+  for (int s = 0; s < ns; ++s) {
+    if (!out.kept[s]) continue;
+    for (int z = 0; z < 3; ++z) {
+      const int g = group_of[3 * s + z];
+      int kept_here = 0;
+      for (int i = group_begin[g]; i < group_begin[g + 1]; ++i) kept_here += out.kept[he[i].side / 3];
+      if (kept_here > 2) {
+        const int side = across(s, z, true);
+        if (side >= 0) out.partner[3 * s + z] = side;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace mr::surface_union

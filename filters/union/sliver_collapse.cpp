@@ -1,0 +1,484 @@
+#include "union/sliver_collapse.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include "union/exact.h"
+
+namespace mr::surface_union {
+
+namespace {
+
+using V3 = std::array<double, 3>;
+constexpr double kPi = 3.14159265358979323846;
+
+V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+
+double angle(const V3& o, const V3& p, const V3& q) {
+  const V3 a = sub3(p, o), b = sub3(q, o);
+  return std::atan2(norm(cross(a, b)), dot(a, b));
+}
+
+double face_min_angle(const V3& a, const V3& b, const V3& c) {
+  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+}
+
+class Collapser {
+public:
+  Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change)
+      : frozen(r.vertices.size(), 0), r_(r), alive_(r.faces.size(), 1), touched_(r.faces.size(), 0), cut_(cut),
+        vf_(r.vertices.size()) {
+    double volume = 0;
+    for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
+    volume_budget_ = max_volume_change * std::fabs(volume);
+    for (int f = 0; f < int(r.faces.size()); ++f)
+      for (int v : r.faces[f]) vf_[v].push_back(f);
+    V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
+    for (const auto& p : r.vertices)
+      for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }
+    max_dev_ = max_dev * norm(sub3(hi, lo));
+    // Line edges and degrees.
+    for (int f = 0; f < int(r.faces.size()); ++f)
+      for (int z = 0; z < 3; ++z)
+        if (r.line_edge[f][z]) line_.insert(ekey(r.faces[f][z], r.faces[f][(z + 1) % 3]));
+    line_degree_.assign(r.vertices.size(), 0);
+    for (const auto& e : line_) { ++line_degree_[e.first]; ++line_degree_[e.second]; }
+  }
+
+  int run(double threshold_rad);
+  void compact();
+  /// Vertices that may neither move nor be removed, nor have their faces flipped.
+  std::vector<char> frozen;
+  /// Faces whose geometry changed (indices before compaction).
+  std::vector<int> touched_faces() const;
+  bool alive(int f) const { return alive_[f] != 0; }
+  const Result& result() const { return r_; }
+
+private:
+  static std::pair<int, int> ekey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+  V3 P(int v) const { return r_.vertices[v]; }
+  double min_angle(int f) const { return face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2])); }
+  /// Moves v onto w if allowed; with `apply` false only checks, and `dv` gets the volume change.
+  bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
+  bool try_flip(int f, int z);      // flips side z of face f
+  std::vector<int> live_faces(int v) const {
+    std::vector<int> out;
+    for (int f : vf_[v])
+      if (alive_[f]) out.push_back(f);
+    return out;
+  }
+
+  Result& r_;
+  std::vector<char> alive_;
+  std::vector<char> touched_;
+  std::vector<char> changed_;  // vertices whose neighbourhood changed in this pass
+  std::vector<char> cut_;
+  std::vector<std::vector<int>> vf_;
+  std::set<std::pair<int, int>> line_;
+  std::vector<int> line_degree_;
+  double max_dev_ = 0;
+  double volume_budget_ = 0;  // what the accepted moves may still change in total
+  double threshold_ = 0;      // sliver angle, radians
+  static double det(const V3& a, const V3& b, const V3& c) { return dot(a, cross(b, c)); }
+
+public:
+  int collapses_ = 0, flips_ = 0;
+};
+
+std::vector<int> Collapser::touched_faces() const {
+  std::vector<int> out;
+  for (int f = 0; f < int(r_.faces.size()); ++f)
+    if (alive_[f] && touched_[f]) out.push_back(f);
+  return out;
+}
+
+bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
+  if (frozen[v]) return false;
+  // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2.
+  const bool vw_line = line_.count(ekey(v, w)) > 0;
+  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) return false;
+  const std::vector<int> fv = live_faces(v), fw = live_faces(w);
+  // Link condition: v and w share exactly the two opposite vertices of their two faces.
+  int shared_faces = 0;
+  for (int f : fv)
+    if (std::find(r_.faces[f].begin(), r_.faces[f].end(), w) != r_.faces[f].end()) ++shared_faces;
+  if (shared_faces != 2) return false;
+  std::vector<int> nv, nw;  // one-rings (sorted, unique)
+  for (int f : fv) nv.insert(nv.end(), r_.faces[f].begin(), r_.faces[f].end());
+  for (int f : fw) nw.insert(nw.end(), r_.faces[f].begin(), r_.faces[f].end());
+  for (auto* n : {&nv, &nw}) {
+    std::sort(n->begin(), n->end());
+    n->erase(std::unique(n->begin(), n->end()), n->end());
+  }
+  int common = 0;
+  for (int x : nv)
+    if (x != v && x != w && std::binary_search(nw.begin(), nw.end(), x)) ++common;
+  if (common != 2) return false;
+  // Geometry: no flipped or degenerate face, bounded deviation, better worst angle.
+  double before = 1e300, after = 1e300;
+  int bad_before = 0, bad_after = 0;
+  for (int f : fv) {
+    const double a = min_angle(f);
+    before = std::min(before, a);
+    bad_before += a < threshold_;
+  }
+  for (int f : fv) {
+    const auto& t = r_.faces[f];
+    if (std::find(t.begin(), t.end(), w) != t.end()) continue;
+    V3 q[3];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == v ? P(w) : P(t[z]);
+    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+    const double ln = norm(n_new), lo = norm(n_old);
+    if (!(ln > 0) || dot(n_old, n_new) <= 0.1 * lo * ln) return false;
+    if (std::fabs(dot(sub3(P(v), q[0]), n_new)) / ln > max_dev_) return false;
+    const double a = face_min_angle(q[0], q[1], q[2]);
+    after = std::min(after, a);
+    bad_after += a < threshold_;
+  }
+  // Better: a larger worst angle, or fewer slivers without making the worst one
+  // much worse (two neighbouring slivers often cannot both improve in one step).
+  if (!(after > before || (bad_after < bad_before && after >= 0.5 * before))) return false;
+  double dv = 0;  // six times the volume change
+  for (int f : fv) {
+    const auto& t = r_.faces[f];
+    dv -= det(P(t[0]), P(t[1]), P(t[2]));
+    if (std::find(t.begin(), t.end(), w) != t.end()) continue;
+    V3 q[3];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == v ? P(w) : P(t[z]);
+    dv += det(q[0], q[1], q[2]);
+  }
+  if (std::fabs(dv) / 6 > volume_budget_) return false;
+  if (dv_out) *dv_out = std::fabs(dv) / 6;
+  if (!apply) return true;
+  volume_budget_ -= std::fabs(dv) / 6;
+  for (int x : nv) changed_[x] = 1;
+  for (int x : nw) changed_[x] = 1;
+  for (int f : fv) {
+    auto& t = r_.faces[f];
+    touched_[f] = 1;
+    if (std::find(t.begin(), t.end(), w) != t.end()) {
+      alive_[f] = 0;
+      continue;
+    }
+    for (int& x : t)
+      if (x == v) x = w;
+    vf_[w].push_back(f);
+  }
+  vf_[v].clear();
+  // Line edges of v now start at w (v's neighbours are the vertices of its old faces).
+  if (line_degree_[v] > 0) {
+    std::vector<std::pair<int, int>> moved;
+    for (int x : nv) {
+      if (x == v) continue;
+      auto it = line_.find(ekey(v, x));
+      if (it == line_.end()) continue;
+      if (x != w) moved.push_back(ekey(x, w));
+      --line_degree_[v];
+      --line_degree_[x];
+      line_.erase(it);
+    }
+    for (const auto& e : moved)
+      if (line_.insert(e).second) { ++line_degree_[e.first]; ++line_degree_[e.second]; }
+  }
+  return true;
+}
+
+bool Collapser::try_flip(int f, int z) {
+  const int u = r_.faces[f][z], v = r_.faces[f][(z + 1) % 3], c = r_.faces[f][(z + 2) % 3];
+  if (line_.count(ekey(u, v)) || frozen[u] || frozen[v] || frozen[c]) return false;
+  int g = -1;
+  for (int h : vf_[v])
+    if (alive_[h] && h != f)
+      for (int y = 0; y < 3; ++y)
+        if (r_.faces[h][y] == v && r_.faces[h][(y + 1) % 3] == u) g = h;
+  if (g < 0) return false;
+  int d = -1;
+  for (int x : r_.faces[g])
+    if (x != u && x != v) d = x;
+  for (int h : vf_[c])  // the new edge must not exist already
+    if (alive_[h] && std::find(r_.faces[h].begin(), r_.faces[h].end(), d) != r_.faces[h].end()) return false;
+  const V3 n_f = cross(sub3(P(v), P(u)), sub3(P(c), P(u)));
+  const V3 n_g = cross(sub3(P(u), P(v)), sub3(P(d), P(v)));
+  const V3 n1 = cross(sub3(P(d), P(u)), sub3(P(c), P(u)));
+  const V3 n2 = cross(sub3(P(v), P(d)), sub3(P(c), P(d)));
+  for (const V3& n : {n1, n2})
+    if (!(norm(n) > 0) || dot(n, n_f) <= 0 || dot(n, n_g) <= 0) return false;
+  // How far the surface moves: the distance between the old and the new diagonal.
+  const V3 cross_diagonals = cross(sub3(P(v), P(u)), sub3(P(d), P(c)));
+  const double lc = norm(cross_diagonals);
+  if (!(lc > 0) || std::fabs(dot(sub3(P(c), P(u)), cross(sub3(P(v), P(u)), sub3(P(d), P(u))))) / lc > max_dev_) return false;
+  const double before = std::min(min_angle(f), min_angle(g));
+  const double after = std::min(face_min_angle(P(u), P(d), P(c)), face_min_angle(P(d), P(v), P(c)));
+  if (!(after > before)) return false;
+  const double dv = std::fabs(det(P(u), P(d), P(c)) + det(P(d), P(v), P(c)) - det(P(u), P(v), P(c)) - det(P(v), P(u), P(d))) / 6;
+  if (dv > volume_budget_) return false;
+  volume_budget_ -= dv;
+  if (frozen[d]) return false;
+  r_.faces[f] = {u, d, c};
+  r_.faces[g] = {d, v, c};
+  touched_[f] = touched_[g] = 1;
+  for (int x : {u, v, c, d})
+    for (int h : vf_[x])
+      if (alive_[h])
+        for (int y : r_.faces[h]) changed_[y] = 1;
+  vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
+  vf_[v].erase(std::remove(vf_[v].begin(), vf_[v].end(), f), vf_[v].end());
+  vf_[c].push_back(g);
+  vf_[d].push_back(f);
+  return true;
+}
+
+int Collapser::run(double threshold) {
+  threshold_ = threshold;
+  changed_.assign(r_.vertices.size(), 1);
+  for (int pass = 0; pass < 10; ++pass) {
+    std::vector<std::pair<double, int>> bad;
+    for (int f = 0; f < int(r_.faces.size()); ++f)
+      if (alive_[f] && cut_[f]) {
+        const double a = min_angle(f);
+        if (a < threshold) bad.push_back({a, f});
+      }
+    std::sort(bad.begin(), bad.end());
+    int done = 0;
+    // After the first pass only slivers whose neighbourhood changed can have new options.
+    std::vector<char> changed;
+    changed.swap(changed_);
+    changed_.assign(r_.vertices.size(), 0);
+    for (const auto& [a0, f] : bad) {
+      if (!alive_[f] || min_angle(f) >= threshold) continue;
+      const auto t = r_.faces[f];
+      if (pass > 0 && !changed[t[0]] && !changed[t[1]] && !changed[t[2]]) continue;
+      // Edges by length, shortest first; each tried in both directions. A cap (one
+      // large angle) is first flipped across its longest edge, which moves nothing.
+      std::array<std::pair<double, int>, 3> edges;
+      for (int z = 0; z < 3; ++z) edges[z] = {norm(sub3(P(t[z]), P(t[(z + 1) % 3]))), z};
+      std::sort(edges.begin(), edges.end());
+      const bool cap = angle(P(t[(edges[2].second + 2) % 3]), P(t[edges[2].second]), P(t[(edges[2].second + 1) % 3])) >
+                       2 * kPi / 3;
+      if (cap && try_flip(f, edges[2].second)) { ++done; ++flips_; continue; }
+      // Of the allowed collapses, the one that changes the volume least.
+      bool ok = false;
+      int best_v = -1, best_w = -1;
+      double best_dv = 1e300;
+      for (const auto& [len, z] : edges)
+        for (int dir = 0; dir < 2; ++dir) {
+          const int a = t[(z + dir) % 3], b = t[(z + 1 - dir) % 3];
+          double dv = 0;
+          if (try_collapse(a, b, false, &dv) && dv < best_dv) { best_dv = dv; best_v = a; best_w = b; }
+        }
+      if (best_v >= 0 && try_collapse(best_v, best_w)) { ++done; ++collapses_; ok = true; }
+      // Otherwise a flip of any side may reshape the neighbourhood for a later pass.
+      for (int k = 2; k >= 0 && !ok; --k)
+        if (try_flip(f, edges[k].second)) { ++done; ++flips_; ok = true; }
+    }
+    if (done == 0) break;
+  }
+  return collapses_;
+}
+
+void Collapser::compact() {
+  std::vector<int> index(r_.vertices.size(), -1);
+  std::vector<V3> vertices;
+  std::vector<std::array<int, 3>> faces;
+  for (int f = 0; f < int(r_.faces.size()); ++f) {
+    if (!alive_[f]) continue;
+    std::array<int, 3> t;
+    for (int z = 0; z < 3; ++z) {
+      const int v = r_.faces[f][z];
+      if (index[v] < 0) { index[v] = int(vertices.size()); vertices.push_back(r_.vertices[v]); }
+      t[z] = index[v];
+    }
+    faces.push_back(t);
+  }
+  std::vector<std::array<bool, 3>> line(faces.size());
+  size_t k = 0;
+  for (int f = 0; f < int(r_.faces.size()); ++f) {
+    if (!alive_[f]) continue;
+    for (int z = 0; z < 3; ++z) line[k][z] = line_.count(ekey(r_.faces[f][z], r_.faces[f][(z + 1) % 3])) > 0;
+    ++k;
+  }
+  r_.vertices = std::move(vertices);
+  r_.faces = std::move(faces);
+  r_.line_edge = std::move(line);
+}
+
+}  // namespace
+
+double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vector<std::array<int, 3>>& f) {
+  double best = 180;
+  for (const auto& t : f) best = std::min(best, face_min_angle(v[t[0]], v[t[1]], v[t[2]]) * 180 / kPi);
+  return best;
+}
+
+namespace {
+
+/// Segment (p, q) meets the closed triangle (a, b, c) (exact; coplanar counts as a hit).
+bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+  const int sp = orient3d(a.data(), b.data(), c.data(), p.data());
+  const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
+  if (sp * sq > 0) return false;
+  if (sp == 0 && sq == 0) {  // coplanar: closed segment against closed triangle in 2D
+    const V3 n = cross(sub3(b, a), sub3(c, a));
+    int k = 0;
+    for (int t = 1; t < 3; ++t)
+      if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+    const Projection pr{(k + 1) % 3, (k + 2) % 3};
+    // Doubles are exact inputs: a filtered 2D orientation with an exact fallback.
+    auto o = [&](const V3& x, const V3& y, const V3& z) {
+      const double det = (y[pr.i] - x[pr.i]) * (z[pr.j] - x[pr.j]) - (y[pr.j] - x[pr.j]) * (z[pr.i] - x[pr.i]);
+      const double perm = std::fabs((y[pr.i] - x[pr.i]) * (z[pr.j] - x[pr.j])) + std::fabs((y[pr.j] - x[pr.j]) * (z[pr.i] - x[pr.i]));
+      if (det > 1e-14 * perm) return 1;
+      if (det < -1e-14 * perm) return -1;
+      return orient2d(make_point(x), make_point(y), make_point(z), pr.i, pr.j);
+    };
+    const int sign = o(a, b, c);  // orientation of the triangle in this projection
+    const V3 &P = p, &Q = q, &A = a, &B = b, &C = c;
+    auto inside = [&](const V3& x) { return sign * o(A, B, x) >= 0 && sign * o(B, C, x) >= 0 && sign * o(C, A, x) >= 0; };
+    if (inside(P) || inside(Q)) return true;
+    auto on_segment = [&](const V3& x, const V3& y, const V3& z) {  // z on closed xy, collinear
+      for (int k : {pr.i, pr.j})
+        if (std::min(x[k], y[k]) > z[k] || std::max(x[k], y[k]) < z[k]) return false;
+      return true;
+    };
+    const V3* T[3] = {&A, &B, &C};
+    for (int e = 0; e < 3; ++e) {
+      const V3 &X = *T[e], &Y = *T[(e + 1) % 3];
+      const int o1 = o(P, Q, X), o2 = o(P, Q, Y), o3 = o(X, Y, P), o4 = o(X, Y, Q);
+      if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+      if ((o1 == 0 && on_segment(P, Q, X)) || (o2 == 0 && on_segment(P, Q, Y)) || (o3 == 0 && on_segment(X, Y, P)) ||
+          (o4 == 0 && on_segment(X, Y, Q)))
+        return true;
+    }
+    return false;
+  }
+  const int s1 = orient3d(p.data(), q.data(), a.data(), b.data());
+  const int s2 = orient3d(p.data(), q.data(), b.data(), c.data());
+  const int s3 = orient3d(p.data(), q.data(), c.data(), a.data());
+  return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
+}
+
+/// Faces f and g (of one mesh) intersect other than along what they share.
+bool faces_meet(const Result& r, int f, int g) {
+  const auto &F = r.faces[f], &G = r.faces[g];
+  int shared = 0, sf = -1, sg = -1;
+  // Shared corners by position: shells that only touch have distinct, coincident vertices.
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (F[i] == G[j] || r.vertices[F[i]] == r.vertices[G[j]]) { ++shared; sf = i; sg = j; }
+  if (shared >= 2) return false;  // neighbours across an edge
+  const auto& V = r.vertices;
+  if (shared == 1) {  // only the edges opposite the shared corner can cross the other face
+    return segment_meets_triangle(V[F[(sf + 1) % 3]], V[F[(sf + 2) % 3]], V[G[0]], V[G[1]], V[G[2]]) ||
+           segment_meets_triangle(V[G[(sg + 1) % 3]], V[G[(sg + 2) % 3]], V[F[0]], V[F[1]], V[F[2]]);
+  }
+  for (int e = 0; e < 3; ++e)
+    if (segment_meets_triangle(V[F[e]], V[F[(e + 1) % 3]], V[G[0]], V[G[1]], V[G[2]]) ||
+        segment_meets_triangle(V[G[e]], V[G[(e + 1) % 3]], V[F[0]], V[F[1]], V[F[2]]))
+      return true;
+  return false;
+}
+
+/// Touched faces of `c` that meet another live face, found through a grid of boxes.
+std::vector<int> new_intersections(const Collapser& c) {
+  const Result& r = c.result();
+  const std::vector<int> touched = c.touched_faces();
+  std::vector<int> bad;
+  if (touched.empty()) return bad;
+  auto box = [&](int f, V3& lo, V3& hi) {
+    lo = hi = r.vertices[r.faces[f][0]];
+    for (int z = 1; z < 3; ++z)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], r.vertices[r.faces[f][z]][k]);
+        hi[k] = std::max(hi[k], r.vertices[r.faces[f][z]][k]);
+      }
+  };
+  V3 all_lo{1e300, 1e300, 1e300}, all_hi{-1e300, -1e300, -1e300};
+  std::vector<double> sizes;
+  for (int f = 0; f < int(r.faces.size()); ++f) {
+    if (!c.alive(f)) continue;
+    V3 lo, hi;
+    box(f, lo, hi);
+    for (int k = 0; k < 3; ++k) { all_lo[k] = std::min(all_lo[k], lo[k]); all_hi[k] = std::max(all_hi[k], hi[k]); }
+    sizes.push_back(std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
+  }
+  // Cells of twice the median face size (long CAD faces would make a mean too coarse),
+  // but not so small that the grid gets huge.
+  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+  const double extent = std::max({all_hi[0] - all_lo[0], all_hi[1] - all_lo[1], all_hi[2] - all_lo[2]});
+  const double cell = std::max({2 * sizes[sizes.size() / 2], extent / 200, 1e-300});
+  auto cell_of = [&](double x, int k) { return int64_t(std::floor((x - all_lo[k]) / cell)); };
+  auto key = [](int64_t i, int64_t j, int64_t k) { return (i * 73856093) ^ (j * 19349663) ^ (k * 83492791); };
+  std::unordered_map<int64_t, std::vector<int>> grid;
+  for (int f = 0; f < int(r.faces.size()); ++f) {
+    if (!c.alive(f)) continue;
+    V3 lo, hi;
+    box(f, lo, hi);
+    for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0); ++i)
+      for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1); ++j)
+        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) grid[key(i, j, k)].push_back(f);
+  }
+  for (int f : touched) {
+    V3 lo, hi;
+    box(f, lo, hi);
+    std::set<int> seen;
+    bool hit = false;
+    for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0) && !hit; ++i)
+      for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1) && !hit; ++j)
+        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2) && !hit; ++k) {
+          auto it = grid.find(key(i, j, k));
+          if (it == grid.end()) continue;
+          for (int g : it->second) {
+            if (g == f || !seen.insert(g).second) continue;
+            V3 glo, ghi;
+            box(g, glo, ghi);
+            bool apart = false;
+            for (int a = 0; a < 3; ++a) apart |= ghi[a] < lo[a] || hi[a] < glo[a];
+            if (!apart && faces_meet(r, f, g)) { hit = true; break; }
+          }
+        }
+    if (hit) bad.push_back(f);
+  }
+  return bad;
+}
+
+}  // namespace
+
+int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
+                     double max_volume_change) {
+  // Moves are local and checked for shape, not for running into another part of the
+  // surface (thin plates); so the result is checked exactly and, where a moved face
+  // meets another, the step is redone with those vertices and their neighbours frozen.
+  std::vector<char> frozen(r.vertices.size(), 0);
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    Result trial = r;
+    Collapser c(trial, cut, max_deviation, max_volume_change);
+    c.frozen = frozen;
+    const int n = c.run(sliver_angle_deg * kPi / 180);
+    const std::vector<int> bad = new_intersections(c);
+    if (bad.empty()) {
+      c.compact();
+      r = std::move(trial);
+      return n;
+    }
+    // Freeze the original vertices of the offending neighbourhoods.
+    std::set<int> region;
+    for (int f : bad)
+      for (int v : trial.faces[f]) region.insert(v);
+    for (int f = 0; f < int(r.faces.size()); ++f)
+      for (int v : r.faces[f])
+        if (region.count(v))
+          for (int x : r.faces[f]) frozen[x] = 1;
+  }
+  return 0;  // could not improve without self-intersections: keep the exact arrangement
+}
+
+}  // namespace mr::surface_union

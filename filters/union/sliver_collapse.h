@@ -1,0 +1,22 @@
+// Surface improvement after the cut: faces with a small angle are removed by
+// collapsing their shortest edge into one of its ends, when no face normal flips,
+// the worst angle around improves, the intersection lines keep their shape and the
+// surface moves less than a bound.
+#pragma once
+
+#include "union/surface_union.h"
+
+namespace mr::surface_union {
+
+/// Collapses slivers of `r` in place (vertices, faces, line_edge, compacted);
+/// returns the number of collapses. Only faces with `cut[f]` (made by the cut) are
+/// treated; slivers the input already had are left as they are.
+/// `max_deviation` bounds each move (fraction of the bbox diagonal); `max_volume_change`
+/// bounds the total volume change of all moves (fraction of the volume).
+int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
+                     double max_volume_change);
+
+/// Smallest face angle of a mesh, degrees.
+double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vector<std::array<int, 3>>& f);
+
+}  // namespace mr::surface_union

@@ -1,0 +1,317 @@
+#include "union/surface_union.h"
+
+#include "common/errors.h"
+#include "union/body_validation.h"
+#include "union/candidate_pairs.h"
+#include "union/face_triangulation.h"
+#include "union/outside_surface.h"
+#include "union/sliver_collapse.h"
+#include "union/triangle_intersection.h"
+
+#include <vcg/complex/algorithms/clean.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+
+namespace mr::surface_union {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+int find(std::vector<int>& uf, int x) {
+  while (uf[x] != x) x = uf[x] = uf[uf[x]];
+  return x;
+}
+
+/// Strictly inside soup face g (coplanar with the projection's face), exactly.
+bool strictly_inside(const PointTable& pts, const std::vector<int>& vertex_point, const Soup& soup, int g,
+                     const QPoint& c, const Projection& pr) {
+  const auto& G = soup.face[g];
+  const QPoint* q[3] = {&pts[vertex_point[G[0]]], &pts[vertex_point[G[1]]], &pts[vertex_point[G[2]]]};
+  const int so = orient2d(*q[0], *q[1], *q[2], pr.i, pr.j);
+  for (int e = 0; e < 3; ++e)
+    if (so * orient2d(*q[e], *q[(e + 1) % 3], c, pr.i, pr.j) <= 0) return false;
+  return true;
+}
+
+void chain_lines(Result& r) {
+  // Undirected line edges and vertex degrees.
+  std::set<std::pair<int, int>> edges;
+  for (size_t f = 0; f < r.faces.size(); ++f)
+    for (int z = 0; z < 3; ++z)
+      if (r.line_edge[f][z]) {
+        const int u = r.faces[f][z], w = r.faces[f][(z + 1) % 3];
+        edges.insert({std::min(u, w), std::max(u, w)});
+      }
+  std::unordered_map<int, std::vector<int>> adj;
+  for (const auto& [u, w] : edges) { adj[u].push_back(w); adj[w].push_back(u); }
+  std::set<std::pair<int, int>> used;
+  auto take = [&](int u, int w) { return used.insert({std::min(u, w), std::max(u, w)}).second; };
+  auto walk = [&](int start, int next) {
+    std::vector<int> line{start};
+    int prev = start, cur = next;
+    take(prev, cur);
+    while (true) {
+      line.push_back(cur);
+      if (adj[cur].size() != 2 || cur == start) break;
+      const int nxt = adj[cur][0] == prev ? adj[cur][1] : adj[cur][0];
+      if (!take(cur, nxt)) break;
+      prev = cur;
+      cur = nxt;
+    }
+    const bool closed = line.front() == line.back() && line.size() > 2;
+    if (closed) line.pop_back();
+    r.lines.push_back(line);
+    r.line_closed.push_back(closed);
+  };
+  for (auto& [u, nb] : adj)
+    if (nb.size() != 2)
+      for (int w : nb)
+        if (!used.count({std::min(u, w), std::max(u, w)})) walk(u, w);
+  for (auto& [u, nb] : adj)
+    for (int w : nb)
+      if (!used.count({std::min(u, w), std::max(u, w)})) walk(u, w);
+}
+
+}  // namespace
+
+Result compute_union(const std::vector<Body>& input, const Params& params) {
+  const auto t_start = Clock::now();
+  if (!(params.sliver_angle_deg >= 0 && params.sliver_angle_deg < 60))
+    throw InvalidInput("sliver angle must be in [0, 60) degrees");
+  if (!(params.sliver_max_deviation >= 0) || !(params.sliver_max_volume_change >= 0))
+    throw InvalidInput("sliver deviation and volume change bounds must be >= 0");
+  std::vector<Body> bodies = input;
+  Result r;
+  r.bodies_reoriented = validate_bodies(bodies);
+  r.bodies = int(bodies.size());
+
+  Soup soup;
+  soup.body_count = int(bodies.size());
+  for (int b = 0; b < soup.body_count; ++b) {
+    const int base = int(soup.vertex.size());
+    soup.vertex.insert(soup.vertex.end(), bodies[b].vertices.begin(), bodies[b].vertices.end());
+    for (const auto& f : bodies[b].faces) {
+      soup.face.push_back({f[0] + base, f[1] + base, f[2] + base});
+      soup.body.push_back(b);
+    }
+  }
+  PointTable pts;
+  std::vector<int> vertex_point(soup.vertex.size());
+  for (size_t v = 0; v < soup.vertex.size(); ++v) vertex_point[v] = pts.insert(make_point(soup.vertex[v]));
+  const int input_points = pts.size();
+
+  // 1. Candidate pairs.
+  auto t = Clock::now();
+  const auto pairs = candidate_pairs(soup);
+  r.candidate_pairs = int(pairs.size());
+  r.time_pairs_ms = ms_since(t);
+
+  // 2. Exact intersections.
+  t = Clock::now();
+  std::unordered_map<int, FaceConstraints> cf;
+  PairIntersector intersector(soup, pts, vertex_point);
+  std::set<std::pair<int, int>> body_pairs;
+  for (const auto& [f, g] : pairs)
+    if (intersector.intersect(f, g, cf)) {
+      ++r.intersecting_face_pairs;
+      body_pairs.insert({std::min(soup.body[f], soup.body[g]), std::max(soup.body[f], soup.body[g])});
+    }
+  r.intersecting_pairs = int(body_pairs.size());
+  r.time_intersect_ms = ms_since(t);
+
+  // 3. Re-triangulation of the cut faces; coplanar duplicates are marked.
+  t = Clock::now();
+  std::vector<std::array<int, 3>> sub;
+  std::vector<int> sub_body, sub_face;
+  std::vector<char> sub_cut;  // from a face that was cut
+  sub.reserve(soup.face.size() + 8 * cf.size());
+  std::vector<char> dropped;
+  std::vector<int> kept_copy_body;  // for a dropped same-side copy: the body whose copy stays
+  for (int f = 0; f < int(soup.face.size()); ++f) {
+    const std::array<int, 3> corners{vertex_point[soup.face[f][0]], vertex_point[soup.face[f][1]],
+                                     vertex_point[soup.face[f][2]]};
+    auto it = cf.find(f);
+    const size_t first = sub.size();
+    if (it == cf.end()) sub.push_back(corners);
+    else {
+      triangulate_face(pts, corners, it->second, sub);
+      ++r.cut_faces;
+    }
+    for (size_t s = first; s < sub.size(); ++s) {
+      sub_body.push_back(soup.body[f]);
+      sub_face.push_back(f);
+      sub_cut.push_back(it != cf.end());
+      char drop = 0;
+      int copy_body = -1;
+      if (it != cf.end() && !it->second.coplanar.empty()) {
+        const Projection pr = face_projection(pts[corners[0]], pts[corners[1]], pts[corners[2]]);
+        const QPoint &a = pts[sub[s][0]], &b = pts[sub[s][1]], &c = pts[sub[s][2]];
+        const QPoint centroid = make_point((a.q[0] + b.q[0] + c.q[0]) / 3, (a.q[1] + b.q[1] + c.q[1]) / 3,
+                                           (a.q[2] + b.q[2] + c.q[2]) / 3);
+        for (int g : it->second.coplanar) {
+          if (!strictly_inside(pts, vertex_point, soup, g, centroid, pr)) continue;
+          const auto& G = soup.face[g];
+          const bool same = orient2d(pts[vertex_point[G[0]]], pts[vertex_point[G[1]]], pts[vertex_point[G[2]]], pr.i,
+                                     pr.j) > 0;
+          // Opposite sides: solid on both sides, both copies go. Same side: both stay
+          // through the fill, which always prefers the lower body's copy where they
+          // coincide, so the higher body's copy is never reached (dropping it before the
+          // fill would leave edges where only some copies of a partly overlapping pair
+          // are missing, and the fill could not tell the sheets apart there).
+          if (!same) drop = 1;
+          else if (soup.body[g] < soup.body[f]) copy_body = soup.body[g];
+        }
+      }
+      dropped.push_back(drop);
+      kept_copy_body.push_back(copy_body);
+    }
+  }
+  {  // Constructed points that ended up as vertices (some sections built on the way are unused).
+    std::vector<char> used(pts.size(), 0);
+    for (const auto& t : sub)
+      for (int id : t) used[id] = 1;
+    for (int id = input_points; id < pts.size(); ++id) r.intersection_points += used[id];
+  }
+  r.time_retriangulate_ms = ms_since(t);
+
+  // 4. Outside surface.
+  t = Clock::now();
+  const Classification cl = classify_outside(pts, sub, sub_body, sub_face, dropped, kept_copy_body, soup);
+  r.orientation_conflicts = cl.orientation_conflicts;
+  if (cl.orientation_conflicts > 0)
+    throw AlgorithmFailure(
+        "the outer surface could not be told apart where coincident faces of different bodies only "
+        "partly overlap (" + std::to_string(cl.orientation_conflicts) +
+        " ambiguous edges); move one of the touching bodies very slightly and retry");
+  if (cl.open_sides > 0)
+    throw AlgorithmFailure("the cut surface is not closed at " + std::to_string(cl.open_sides) +
+                           " edges (internal error; please report the input)");
+  // Output vertices: one per fan of kept faces around a point (so bodies touching
+  // along an edge or at a point give a manifold result).
+  const int ns = int(sub.size());
+  std::vector<int> uf(3 * size_t(ns));
+  std::iota(uf.begin(), uf.end(), 0);
+  for (int s = 0; s < ns; ++s) {
+    if (!cl.kept[s]) continue;
+    for (int z = 0; z < 3; ++z) {
+      const int side = cl.partner[3 * s + z];
+      if (side < 0) continue;
+      const int u = side / 3, y = side % 3;
+      // The edge's start corner of s meets the end corner of the partner, and vice versa.
+      const int a = find(uf, 3 * s + z), b = find(uf, 3 * u + (y + 1) % 3);
+      uf[a] = b;
+      const int c = find(uf, 3 * s + (z + 1) % 3), d = find(uf, 3 * u + y);
+      uf[c] = d;
+    }
+  }
+  std::vector<int> vertex_of(3 * size_t(ns), -1);
+  std::vector<char> cut;
+  for (int s = 0; s < ns; ++s) {
+    if (!cl.kept[s]) continue;
+    std::array<int, 3> face;
+    std::array<bool, 3> line;
+    for (int z = 0; z < 3; ++z) {
+      const int root = find(uf, 3 * s + z);
+      if (vertex_of[root] < 0) {
+        vertex_of[root] = int(r.vertices.size());
+        r.vertices.push_back(pts[sub[s][z]].d);
+      }
+      face[z] = vertex_of[root];
+      line[z] = cl.line_edge[3 * s + z] != 0;
+    }
+    r.faces.push_back(face);
+    cut.push_back(sub_cut[s]);
+    r.line_edge.push_back(line);
+  }
+  r.faces_removed = ns - int(r.faces.size());
+  r.time_classify_ms = ms_since(t);
+
+  // 5. Slivers.
+  t = Clock::now();
+  if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,
+                                          params.sliver_max_volume_change);
+  r.time_slivers_ms = ms_since(t);
+  for (const auto& l : r.line_edge) r.intersection_edges += int(l[0]) + int(l[1]) + int(l[2]);
+  r.intersection_edges /= 2;
+  chain_lines(r);
+  r.min_angle_deg = min_angle_deg(r.vertices, r.faces);
+  r.time_total_ms = ms_since(t_start);
+  return r;
+}
+
+Body body_from_mesh(const TriMesh& mesh, const std::string& name) {
+  Body b;
+  b.name = name;
+  std::vector<int> index(mesh.vert.size(), -1);
+  for (size_t i = 0; i < mesh.vert.size(); ++i) {
+    if (mesh.vert[i].IsD()) continue;
+    index[i] = int(b.vertices.size());
+    const auto& p = mesh.vert[i].cP();
+    b.vertices.push_back({p[0], p[1], p[2]});
+  }
+  for (const auto& f : mesh.face) {
+    if (f.IsD()) continue;
+    b.faces.push_back({index[vcg::tri::Index(mesh, f.cV(0))], index[vcg::tri::Index(mesh, f.cV(1))],
+                       index[vcg::tri::Index(mesh, f.cV(2))]});
+  }
+  return b;
+}
+
+std::vector<Body> bodies_from_components(const TriMesh& mesh) {
+  // Faces connected through shared vertices form one component.
+  const int nv = int(mesh.vert.size());
+  std::vector<int> uf(nv);
+  std::iota(uf.begin(), uf.end(), 0);
+  for (const auto& f : mesh.face) {
+    if (f.IsD()) continue;
+    const int a = find(uf, int(vcg::tri::Index(mesh, f.cV(0))));
+    for (int z = 1; z < 3; ++z) uf[find(uf, int(vcg::tri::Index(mesh, f.cV(z))))] = a;
+  }
+  std::map<int, int> body_of_root;
+  std::vector<Body> bodies;
+  std::vector<int> local(nv, -1);
+  for (const auto& f : mesh.face) {
+    if (f.IsD()) continue;
+    const int root = find(uf, int(vcg::tri::Index(mesh, f.cV(0))));
+    auto [it, added] = body_of_root.emplace(root, int(bodies.size()));
+    if (added) {
+      bodies.emplace_back();
+      bodies.back().name = "component " + std::to_string(it->second);
+    }
+    Body& b = bodies[it->second];
+    std::array<int, 3> face;
+    for (int z = 0; z < 3; ++z) {
+      const int v = int(vcg::tri::Index(mesh, f.cV(z)));
+      if (local[v] < 0) {
+        local[v] = int(b.vertices.size());
+        const auto& p = mesh.vert[v].cP();
+        b.vertices.push_back({p[0], p[1], p[2]});
+      }
+      face[z] = local[v];
+    }
+    b.faces.push_back(face);
+  }
+  return bodies;
+}
+
+void to_tri_mesh(const Result& r, TriMesh& out) {
+  out.Clear();
+  vcg::tri::Allocator<TriMesh>::AddVertices(out, r.vertices.size());
+  vcg::tri::Allocator<TriMesh>::AddFaces(out, r.faces.size());
+  for (size_t i = 0; i < r.vertices.size(); ++i) out.vert[i].P() = Point3(r.vertices[i][0], r.vertices[i][1], r.vertices[i][2]);
+  for (size_t f = 0; f < r.faces.size(); ++f)
+    for (int z = 0; z < 3; ++z) {
+      out.face[f].V(z) = &out.vert[r.faces[f][z]];
+      if (r.line_edge[f][z]) out.face[f].SetFaceEdgeS(z);
+    }
+  vcg::tri::UpdateBounding<TriMesh>::Box(out);
+}
+
+}  // namespace mr::surface_union

@@ -1,0 +1,215 @@
+#include "union/triangle_intersection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mr::surface_union {
+
+PairIntersector::PairIntersector(const Soup& soup, PointTable& points, const std::vector<int>& vertex_point)
+    : soup_(soup), points_(points), vertex_point_(vertex_point) {}
+
+int PairIntersector::edge_plane_point(int a, int b, int face) {
+  if (a > b) std::swap(a, b);
+  EFKey key{a, b, face};
+  auto it = edge_face_cache_.find(key);
+  if (it != edge_face_cache_.end()) return it->second;
+  const auto& F = soup_.face[face];
+  int id = points_.insert(edge_plane_crossing(vp(a), vp(b), vp(F[0]), vp(F[1]), vp(F[2])));
+  edge_face_cache_.emplace(key, id);
+  return id;
+}
+
+void PairIntersector::plane_section(int f, const int sign[3], int other, std::vector<int>& out) {
+  const auto& F = soup_.face[f];
+  for (int i = 0; i < 3; ++i) {
+    if (sign[i] == 0) out.push_back(vertex_point_[F[i]]);
+    const int j = (i + 1) % 3;
+    if (sign[i] * sign[j] < 0) out.push_back(edge_plane_point(F[i], F[j], other));
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+namespace {
+
+/// An axis along which points p and q (distinct) differ, preferring the largest spread.
+int spread_axis(const QPoint& p, const QPoint& q) {
+  int best = -1;
+  double spread = -1;
+  for (int k = 0; k < 3; ++k)
+    if (compare(p, q, k) != 0 && std::fabs(p.d[k] - q.d[k]) > spread) { spread = std::fabs(p.d[k] - q.d[k]); best = k; }
+  return best;
+}
+
+void add_result(FaceConstraints& c, int p, int q) {
+  if (p == q) c.points.push_back(p);
+  else c.segments.push_back({p, q});
+}
+
+}  // namespace
+
+namespace {
+
+using V3 = std::array<double, 3>;
+V3 cross3(const V3& a, const V3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+double dot3(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+}  // namespace
+
+// A floating-point filter that only answers "certainly disjoint": the two sections
+// are computed in doubles with an error bound, and the pair is rejected when their
+// projections on the common line are apart by more than that bound. Anything
+// doubtful goes to the exact path, so the filter never changes a decision; it only
+// saves building rational points for pairs that do not meet.
+bool PairIntersector::sections_surely_apart(int f, const int* st, int g, const int* sx) const {
+  const auto& T = soup_.face[f];
+  const auto& X = soup_.face[g];
+  auto normal = [&](const std::array<int, 3>& F) {
+    const V3 &a = soup_.vertex[F[0]], &b = soup_.vertex[F[1]], &c = soup_.vertex[F[2]];
+    return cross3({b[0] - a[0], b[1] - a[1], b[2] - a[2]}, {c[0] - a[0], c[1] - a[1], c[2] - a[2]});
+  };
+  const V3 nt = normal(T), nx = normal(X);
+  const V3 d = cross3(nt, nx);
+  const double ld = std::sqrt(dot3(d, d)), lt = std::sqrt(dot3(nt, nt)), lx = std::sqrt(dot3(nx, nx));
+  if (!(ld > 1e-6 * lt * lx)) return false;  // nearly parallel planes: decide exactly
+  double lo[2], hi[2];
+  const std::array<int, 3>* faces[2] = {&T, &X};
+  const int* signs[2] = {st, sx};
+  const std::array<int, 3>* planes[2] = {&X, &T};
+  for (int k = 0; k < 2; ++k) {
+    const auto& F = *faces[k];
+    const auto& Q = *planes[k];
+    const V3& q0 = soup_.vertex[Q[0]];
+    const V3 nq = k == 0 ? nx : nt;
+    double o[3], err[3];
+    for (int i = 0; i < 3; ++i) {
+      const V3& p = soup_.vertex[F[i]];
+      const V3 r{p[0] - q0[0], p[1] - q0[1], p[2] - q0[2]};
+      o[i] = dot3(r, nq);
+      err[i] = 1e-13 * (std::fabs(r[0] * nq[0]) + std::fabs(r[1] * nq[1]) + std::fabs(r[2] * nq[2]) +
+                        std::sqrt(dot3(r, r)) * std::sqrt(dot3(nq, nq)));
+    }
+    lo[k] = 1e300;
+    hi[k] = -1e300;
+    double slack = 0;
+    for (int i = 0; i < 3; ++i) {
+      const V3& p = soup_.vertex[F[i]];
+      if (signs[k][i] == 0) {
+        const double x = dot3(p, d);
+        lo[k] = std::min(lo[k], x);
+        hi[k] = std::max(hi[k], x);
+      }
+      const int j = (i + 1) % 3;
+      if (signs[k][i] * signs[k][j] >= 0) continue;
+      const double den = o[i] - o[j];
+      if (!(std::fabs(den) > 1e6 * (err[i] + err[j]))) return false;
+      const V3& q = soup_.vertex[F[j]];
+      const double t = o[i] / den;
+      const V3 e{q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+      const double x = dot3(p, d) + t * dot3(e, d);
+      lo[k] = std::min(lo[k], x);
+      hi[k] = std::max(hi[k], x);
+      slack = std::max(slack, 1e-5 * std::sqrt(dot3(e, e)) * ld + 1e-12 * (std::fabs(dot3(p, d)) + std::fabs(dot3(e, d))));
+    }
+    lo[k] -= slack + 1e-12 * std::fabs(lo[k]);
+    hi[k] += slack + 1e-12 * std::fabs(hi[k]);
+  }
+  return lo[0] > hi[1] || lo[1] > hi[0];
+}
+
+bool PairIntersector::intersect(int f, int g, std::unordered_map<int, FaceConstraints>& cf) {
+  const auto& T = soup_.face[f];
+  const auto& X = soup_.face[g];
+  int sx[3], st[3];
+  for (int i = 0; i < 3; ++i) sx[i] = orient3d(vp(T[0]), vp(T[1]), vp(T[2]), vp(X[i]));
+  if ((sx[0] > 0 && sx[1] > 0 && sx[2] > 0) || (sx[0] < 0 && sx[1] < 0 && sx[2] < 0)) return false;
+  if (sx[0] == 0 && sx[1] == 0 && sx[2] == 0) return coplanar(f, g, cf);
+  for (int i = 0; i < 3; ++i) st[i] = orient3d(vp(X[0]), vp(X[1]), vp(X[2]), vp(T[i]));
+  if ((st[0] > 0 && st[1] > 0 && st[2] > 0) || (st[0] < 0 && st[1] < 0 && st[2] < 0)) return false;
+  // Both triangles cross the other's plane: each section is a point or a segment on
+  // the common line; the intersection is the overlap of the two sections.
+  if (sections_surely_apart(f, st, g, sx)) return false;
+  std::vector<int> a, b;
+  plane_section(f, st, g, a);
+  plane_section(g, sx, f, b);
+  if (a.empty() || b.empty()) return false;  // cannot happen with exact signs
+  int axis = -1;
+  if (a.size() > 1) axis = spread_axis(points_[a[0]], points_[a[1]]);
+  else if (b.size() > 1) axis = spread_axis(points_[b[0]], points_[b[1]]);
+  if (axis < 0) {  // two single points
+    if (a[0] != b[0]) return false;
+    cf[f].points.push_back(a[0]);
+    cf[g].points.push_back(a[0]);
+    return true;
+  }
+  auto less = [&](int p, int q) { return compare(points_[p], points_[q], axis) < 0; };
+  if (a.size() > 1 && less(a[1], a[0])) std::swap(a[0], a[1]);
+  if (b.size() > 1 && less(b[1], b[0])) std::swap(b[0], b[1]);
+  const int a_lo = a.front(), a_hi = a.back(), b_lo = b.front(), b_hi = b.back();
+  const int lo = less(a_lo, b_lo) ? b_lo : a_lo;
+  const int hi = less(a_hi, b_hi) ? a_hi : b_hi;
+  const int c = compare(points_[lo], points_[hi], axis);
+  if (c > 0) return false;
+  const int q = c == 0 ? lo : hi;
+  add_result(cf[f], lo, q);
+  add_result(cf[g], lo, q);
+  return true;
+}
+
+namespace {
+
+}  // namespace
+
+bool PairIntersector::coplanar(int f, int g, std::unordered_map<int, FaceConstraints>& cf) {
+  const auto& T = soup_.face[f];
+  const auto& X = soup_.face[g];
+  // Copies: inserting new points may move the table's storage.
+  const QPoint pt[3] = {points_[vertex_point_[T[0]]], points_[vertex_point_[T[1]]], points_[vertex_point_[T[2]]]};
+  const QPoint px[3] = {points_[vertex_point_[X[0]]], points_[vertex_point_[X[1]]], points_[vertex_point_[X[2]]]};
+  const QPoint* qt[3] = {&pt[0], &pt[1], &pt[2]};
+  const QPoint* qx[3] = {&px[0], &px[1], &px[2]};
+  const Projection pr = face_projection(*qt[0], *qt[1], *qt[2]);
+  const int sign_x = orient2d(*qx[0], *qx[1], *qx[2], pr.i, pr.j);
+  if (sign_x == 0) return false;  // degenerate face, rejected earlier
+  // Clips segment (a, b) against triangle C (orientation sc); appends the part inside.
+  auto clip = [&](int va, int vb, const QPoint* const C[3], int sc, FaceConstraints& out) {
+    const QPoint a = points_[vertex_point_[va]];
+    const QPoint b = points_[vertex_point_[vb]];
+    mpq_class t0 = 0, t1 = 1;
+    bool moved0 = false, moved1 = false;
+    for (int e = 0; e < 3; ++e) {
+      const QPoint& c0 = *C[e];
+      const QPoint& c1 = *C[(e + 1) % 3];
+      const int sa = sc * orient2d(c0, c1, a, pr.i, pr.j);
+      const int sb = sc * orient2d(c0, c1, b, pr.i, pr.j);
+      if (sa < 0 && sb < 0) return false;
+      if (sa >= 0 && sb >= 0) continue;
+      const mpq_class fa = orient2d_exact(c0, c1, a, pr.i, pr.j);
+      const mpq_class fb = orient2d_exact(c0, c1, b, pr.i, pr.j);
+      mpq_class t = fa / (fa - fb);
+      if (sa < 0) {
+        if (t > t0) { t0 = t; moved0 = true; }
+      } else if (t < t1) {
+        t1 = t;
+        moved1 = true;
+      }
+    }
+    if (t0 > t1) return false;
+    const int p = moved0 ? points_.insert(lerp(a, b, t0)) : vertex_point_[va];
+    const int q = moved1 ? points_.insert(lerp(a, b, t1)) : vertex_point_[vb];
+    add_result(out, p, q);
+    return true;
+  };
+  bool any = false;
+  FaceConstraints& cft = cf[f];
+  FaceConstraints& cfg = cf[g];
+  for (int e = 0; e < 3; ++e) any |= clip(X[e], X[(e + 1) % 3], qt, 1, cft);
+  for (int e = 0; e < 3; ++e) any |= clip(T[e], T[(e + 1) % 3], qx, sign_x, cfg);
+  if (any) {
+    cft.coplanar.push_back(g);
+    cfg.coplanar.push_back(f);
+  }
+  return any;
+}
+
+}  // namespace mr::surface_union

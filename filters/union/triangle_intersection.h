@@ -1,0 +1,52 @@
+// Exact triangle-triangle intersection between faces of different bodies.
+// Every topological decision is an exact orientation predicate; the points are
+// exact rationals stored once in the point table (edge-face crossings are also
+// cached by (edge, face), so the faces around an edge reuse the same point).
+#pragma once
+
+#include "union/point_table.h"
+#include "union/soup.h"
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace mr::surface_union {
+
+class PairIntersector {
+public:
+  /// `vertex_point[v]` is the point-table index of input vertex v.
+  PairIntersector(const Soup& soup, PointTable& points, const std::vector<int>& vertex_point);
+
+  /// Intersects faces f and g and appends what each receives to `cf[f]` and `cf[g]`.
+  /// Returns true if they share at least one point. Handles crossing, touching at a
+  /// point or along a segment, shared vertices and edges, and coplanar overlap.
+  bool intersect(int f, int g, std::unordered_map<int, FaceConstraints>& cf);
+
+  int edge_face_points() const { return int(edge_face_cache_.size()); }
+
+private:
+  int edge_plane_point(int a, int b, int face);
+  void plane_section(int f, const int sign[3], int other, std::vector<int>& out);
+  bool coplanar(int f, int g, std::unordered_map<int, FaceConstraints>& cf);
+  bool sections_surely_apart(int f, const int* st, int g, const int* sx) const;
+  const double* vp(int v) const { return soup_.vertex[v].data(); }
+
+  const Soup& soup_;
+  PointTable& points_;
+  const std::vector<int>& vertex_point_;
+  struct EFKey {
+    int a, b, f;
+    bool operator==(const EFKey& o) const { return a == o.a && b == o.b && f == o.f; }
+  };
+  struct EFHash {
+    size_t operator()(const EFKey& k) const {
+      uint64_t h = (uint64_t(uint32_t(k.a)) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(uint32_t(k.b)) * 0xC2B2AE3D27D4EB4Full) ^
+                   (uint64_t(uint32_t(k.f)) * 0x165667B19E3779F9ull);
+      return size_t(h ^ (h >> 31));
+    }
+  };
+  std::unordered_map<EFKey, int, EFHash> edge_face_cache_;
+};
+
+}  // namespace mr::surface_union

@@ -1,0 +1,68 @@
+// Unit tests of the union's exact building blocks.
+#include "union/candidate_pairs.h"
+#include "union/exact.h"
+#include "union/face_triangulation.h"
+#include "union/point_table.h"
+
+#include <gtest/gtest.h>
+
+using namespace mr::surface_union;
+
+TEST(UnionExact, Orient3dIsExactOnNearlyCoplanarPoints) {
+  const double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0};
+  const double up[3] = {0.3, 0.3, 1e-300}, down[3] = {0.3, 0.3, -1e-300}, on[3] = {0.3, 0.3, 0};
+  EXPECT_EQ(orient3d(a, b, c, up), 1);
+  EXPECT_EQ(orient3d(a, b, c, down), -1);
+  EXPECT_EQ(orient3d(a, b, c, on), 0);
+  // A plane that is not axis-aligned: points on it computed in doubles are usually
+  // off it by rounding, which the exact sign must see.
+  const double p[3] = {0.1, 0.2, 0.3}, q[3] = {1.7, -0.4, 0.9}, r[3] = {0.5, 2.3, -1.1};
+  const double mid[3] = {(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2};
+  const int s = orient3d(p, q, r, mid);
+  EXPECT_EQ(s, sgn(orient3d_exact(p, q, r, mid)));
+  const double exact_mid[3] = {0.5, 0.5, 0.5}, e0[3] = {0, 0, 0}, e1[3] = {1, 1, 1}, e2[3] = {1, 0, 1};
+  EXPECT_EQ(orient3d(e0, e1, e2, exact_mid), 0);
+}
+
+TEST(UnionExact, PointTableSharesEqualRationals) {
+  PointTable t;
+  const int a = t.insert(make_point(mpq_class(1, 3), mpq_class(0), mpq_class(2, 7)));
+  const int b = t.insert(make_point(mpq_class(2, 6), mpq_class(0), mpq_class(4, 14)));
+  const int c = t.insert(make_point(mpq_class(1, 3) + mpq_class(1, 1000000000) * mpq_class(1, 1000000000), mpq_class(0), mpq_class(2, 7)));
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, c);
+  EXPECT_EQ(t.size(), 2);
+}
+
+TEST(UnionTriangulation, CrossingSegmentsSplitAndTileTheFace) {
+  PointTable t;
+  const int c0 = t.insert(make_point({0, 0, 0})), c1 = t.insert(make_point({4, 0, 0})), c2 = t.insert(make_point({0, 4, 0}));
+  const int p = t.insert(make_point({1, 0.5, 0})), q = t.insert(make_point({1, 2, 0}));
+  const int r = t.insert(make_point({0.5, 1, 0})), s = t.insert(make_point({2, 1, 0}));
+  FaceConstraints fc;
+  fc.segments = {{p, q}, {r, s}};
+  std::vector<std::array<int, 3>> out;
+  triangulate_face(t, {c0, c1, c2}, fc, out);
+  EXPECT_EQ(t.size(), 8);  // the crossing (1, 1) was added
+  double area = 0;
+  for (const auto& f : out) {
+    const auto &a = t[f[0]].d, &b = t[f[1]].d, &c = t[f[2]].d;
+    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    EXPECT_GT(twice, 0);
+    area += twice / 2;
+  }
+  EXPECT_DOUBLE_EQ(area, 8.0);
+  // 8 points, 3 on the hull: 2*8 - 3 - 2 = 11 triangles.
+  EXPECT_EQ(out.size(), 11u);
+}
+
+TEST(UnionPairs, GridFindsOnlyOverlappingPairsOfDifferentBodies) {
+  Soup s;
+  s.body_count = 2;
+  s.vertex = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 0.5, -1}, {0.5, 0.5, 1}, {0.6, 0.4, 0}, {5, 5, 5}, {6, 5, 5}, {5, 6, 5}};
+  s.face = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};
+  s.body = {0, 1, 1};
+  const auto pairs = candidate_pairs(s);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0], std::make_pair(0, 1));
+}

@@ -1,0 +1,498 @@
+"""Regression tests of generate_surface_intersection_union through PyMeshLab.
+
+Every union is checked for what the issue asks: closed and two-manifold (PyMeshLab's
+topological measures), consistently oriented (positive volume and a single orientation
+per edge), no self-intersections (MeshLab's own selection selects 0 faces), and a
+volume equal to manifold3d's union of the same bodies.
+"""
+import math
+from fractions import Fraction
+
+import numpy as np
+import pymeshlab
+import pytest
+
+from conftest import assert_unchanged, load, raises_on, shared_mesh, snapshot
+
+manifold3d = pytest.importorskip("manifold3d")
+
+LAYERS, COMPONENTS = 0, 1
+# Without the sliver step the union is the exact arrangement rounded to doubles.
+EXACT_VOLUME_RTOL = 1e-9
+# The sliver step changes the volume by at most sliver_max_volume_change (default 1e-4).
+IMPROVED_VOLUME_RTOL = 1e-4
+
+
+def reference(meshes):
+    """manifold3d's union volume of the given pymeshlab meshes, cavities filled.
+
+    Our filter returns the outer surface (the flood fill starts outside), so voids
+    enclosed by the bodies are filled: their shells, which manifold3d keeps as
+    components of negative volume, are left out of the reference."""
+    parts = []
+    for m in meshes:
+        mesh = manifold3d.Mesh64(vert_properties=np.ascontiguousarray(m.vertex_matrix(), dtype=np.float64),
+                                 tri_verts=np.ascontiguousarray(m.face_matrix(), dtype=np.uint64))
+        part = manifold3d.Manifold(mesh)
+        assert part.status() == manifold3d.Error.NoError
+        parts.append(part)
+    union = manifold3d.Manifold.batch_boolean(parts, manifold3d.OpType.Add)
+    return sum(v for v in (c.volume() for c in union.decompose()) if v > 0)
+
+
+def angles(m):
+    v, f = m.vertex_matrix(), m.face_matrix()
+    out = []
+    for z in range(3):
+        a, b, c = v[f[:, z]], v[f[:, (z + 1) % 3]], v[f[:, (z + 2) % 3]]
+        u, w = b - a, c - a
+        out.append(np.degrees(np.arctan2(np.linalg.norm(np.cross(u, w), axis=1), (u * w).sum(1))))
+    return np.stack(out, 1)
+
+
+def _orient(a, b, c, d):
+    u, v, w = [x - y for x, y in zip(b, a)], [x - y for x, y in zip(c, a)], [x - y for x, y in zip(d, a)]
+    det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])
+    return (det > 0) - (det < 0)
+
+
+def _segment_meets_triangle(p, q, tri):
+    a, b, c = tri
+    sp, sq = _orient(a, b, c, p), _orient(a, b, c, q)
+    if sp * sq > 0:
+        return False
+    if sp == 0 and sq == 0:
+        return True  # coplanar: counted as a hit (conservative)
+    s = [_orient(p, q, a, b), _orient(p, q, b, c), _orient(p, q, c, a)]
+    return all(x >= 0 for x in s) or all(x <= 0 for x in s)
+
+
+def exactly_intersecting(m, faces):
+    """Of the given faces, those that meet a face sharing no vertex with them (exact rationals)."""
+    v, f = m.vertex_matrix(), m.face_matrix()
+    lo, hi = v[f].min(1), v[f].max(1)
+    out = []
+    for i in faces:
+        ti = [[Fraction(x) for x in v[k]] for k in f[i]]
+        near = np.nonzero(np.all(lo <= hi[i], 1) & np.all(hi >= lo[i], 1))[0]
+        for j in near:
+            if j == i or set(f[i]) & set(f[j]):
+                continue
+            tj = [[Fraction(x) for x in v[k]] for k in f[j]]
+            if any(_segment_meets_triangle(tj[e], tj[(e + 1) % 3], ti) for e in range(3)) or \
+               any(_segment_meets_triangle(ti[e], ti[(e + 1) % 3], tj) for e in range(3)):
+                out.append(int(i))
+                break
+    return out
+
+
+def self_intersecting_faces(m):
+    """Faces MeshLab's self-intersection selection flags that really intersect another face.
+
+    MeshLab's test (vcg::Clean::SelfIntersections) snaps plane distances below an
+    absolute 1e-6 to zero, and its result depends on the process's history (it
+    flagged two faces 0.03 apart, strictly separated, only after other filters had
+    run). Flagged faces are therefore re-checked with exact rational predicates.
+    """
+    fresh = pymeshlab.MeshSet()
+    fresh.add_mesh(pymeshlab.Mesh(m.vertex_matrix(), m.face_matrix()))
+    fresh.compute_selection_by_self_intersections_per_face()
+    flagged = np.nonzero(fresh.current_mesh().face_selection_array())[0]
+    return len(exactly_intersecting(m, flagged))
+
+
+def check_union(ms, result_id):
+    """Closed, manifold, oriented, no self-intersections; returns the volume."""
+    ms.set_current_mesh(result_id)
+    m = ms.current_mesh()
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0
+    assert topo["is_mesh_two_manifold"]
+    assert topo["non_two_manifold_edges"] == 0 and topo["non_two_manifold_vertices"] == 0
+    # Consistent orientation: every directed edge exactly once.
+    f = m.face_matrix()
+    directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    assert len({tuple(e) for e in directed}) == len(directed)
+    assert self_intersecting_faces(m) == 0
+    volume = ms.get_geometric_measures()["mesh_volume"]
+    assert volume > 0
+    return volume
+
+
+def unite(ms, **kw):
+    return ms.generate_surface_intersection_union(**kw)
+
+
+def multicomponent(name):
+    ms = load(f"multicomponent/{name}")
+    ms.generate_splitting_by_connected_components()
+    parts = [ms.mesh(i) for i in range(1, ms.mesh_number())]
+    return ms, parts
+
+
+@pytest.mark.parametrize("sliver_angle,rtol", [(0.0, EXACT_VOLUME_RTOL), (10.0, IMPROVED_VOLUME_RTOL)])
+def test_balls(sliver_angle, rtol):
+    ms = load("multicomponent/ballA.off")
+    ms.load_new_mesh(str(shared_mesh("multicomponent/ballB.off")))
+    ref = reference([ms.mesh(0), ms.mesh(1)])
+    r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle, create_lines_layer=True)
+    assert (r["bodies"], r["intersecting_pairs"], r["intersection_lines"]) == (2, 1, 1)
+    assert ms.mesh_number() == 4  # inputs, union, lines
+    volume = check_union(ms, 2)
+    assert volume == pytest.approx(ref, rel=rtol)
+    lines = ms.mesh(3)
+    assert lines.edge_number() == r["intersection_edges"] and lines.face_number() == 0
+    # The intersection edges are the face-edge selection of the result.
+    ms.set_current_mesh(2)
+    ms.generate_polyline_from_selected_edges()
+    assert ms.current_mesh().edge_number() == r["intersection_edges"]
+
+
+@pytest.mark.parametrize("name", ["box.STL", "rabbit.obj"])
+@pytest.mark.parametrize("sliver_angle,rtol", [(0.0, EXACT_VOLUME_RTOL), (10.0, IMPROVED_VOLUME_RTOL)])
+def test_shared_multicomponent_meshes(name, sliver_angle, rtol):
+    ms, parts = multicomponent(name)
+    ref = reference(parts)
+    ms.set_current_mesh(0)
+    r = unite(ms, bodies=COMPONENTS, sliver_angle=sliver_angle)
+    assert r["bodies"] == len(parts)
+    assert r["intersecting_pairs"] > 0 and r["intersection_lines"] > 0
+    volume = check_union(ms, ms.mesh_number() - 1)
+    assert volume == pytest.approx(ref, rel=rtol)
+
+
+def cube_set(offsets, size=1.0):
+    ms = pymeshlab.MeshSet()
+    for off in offsets:
+        ms.create_cube(size=size)
+        ms.compute_matrix_from_translation(axisx=off[0], axisy=off[1], axisz=off[2])
+    return ms
+
+
+@pytest.mark.parametrize("case,offsets,volume", [
+    ("shared face", [(0, 0, 0), (1, 0, 0)], 2.0),
+    ("shifted by half", [(0, 0, 0), (0.5, 0, 0)], 1.5),
+    ("shifted by half diagonally", [(0, 0, 0), (0.5, 0.5, 0.5)], 2 - 0.125),
+    ("touching along an edge", [(0, 0, 0), (1, 1, 0)], 2.0),
+    ("touching at a corner", [(0, 0, 0), (1, 1, 1)], 2.0),
+    ("identical", [(0, 0, 0), (0, 0, 0)], 1.0),
+])
+def test_degenerate_cube_pairs(case, offsets, volume):
+    ms = cube_set(offsets)
+    r = unite(ms, bodies=LAYERS)
+    assert r["bodies"] == 2
+    assert check_union(ms, ms.mesh_number() - 1) == pytest.approx(volume, rel=1e-12), case
+
+
+def test_enclosed_cavity_is_filled():
+    # Six slabs forming the walls of a hollow 3x3x3 box around a 1x1x1 void.
+    slabs = [((3, 3, 1), (0, 0, 0)), ((3, 3, 1), (0, 0, 2)), ((3, 1, 3), (0, 0, 0)), ((3, 1, 3), (0, 2, 0)),
+             ((1, 3, 3), (0, 0, 0)), ((1, 3, 3), (2, 0, 0))]
+    ms = pymeshlab.MeshSet()
+    for (sx, sy, sz), (x, y, z) in slabs:
+        ms.create_cube(size=1)
+        ms.compute_matrix_from_scaling_or_normalization(axisx=sx, axisy=sy, axisz=sz, uniformflag=False)
+        ms.compute_matrix_from_translation(axisx=x + sx / 2, axisy=y + sy / 2, axisz=z + sz / 2)
+    r = unite(ms, bodies=LAYERS)
+    assert r["bodies"] == 6
+    assert check_union(ms, 6) == pytest.approx(27.0, rel=1e-12)
+    ms.set_current_mesh(6)
+    assert ms.get_topological_measures()["connected_components_number"] == 1
+
+
+def test_sliver_step_reaches_the_input_minimum_angle_on_the_balls():
+    # The balls' own triangles have a smallest angle of 5.48 deg; the raw cut has 119
+    # faces under 5 deg (down to 0.04 deg). After the default sliver step: none.
+    ms = load("multicomponent/ballA.off")
+    ms.load_new_mesh(str(shared_mesh("multicomponent/ballB.off")))
+    input_min = min(angles(ms.mesh(i)).min() for i in range(2))
+    r = unite(ms, bodies=LAYERS)
+    out = angles(ms.mesh(2))
+    assert (out.min(1) < min(5.0, input_min)).sum() == 0
+    assert r["min_angle"] >= min(5.0, input_min) - 1e-9
+    assert r["slivers_collapsed"] > 0
+
+
+def test_sphere_and_identical_copy():
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(subdiv=3)
+    ms.create_sphere(subdiv=3)
+    r = unite(ms, bodies=LAYERS)
+    assert r["faces"] == ms.mesh(0).face_number()
+    assert check_union(ms, 2) == pytest.approx(ms.get_geometric_measures()["mesh_volume"], rel=1e-12)
+
+
+def sphere_and_cylinder():
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(subdiv=4)
+    ms.create_cone(r0=0.4, r1=0.4, h=3, subdiv=64)
+    ms.compute_matrix_from_translation(axisx=0.1, axisy=0.05)
+    return ms
+
+
+def test_two_spheres():
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(subdiv=4)
+    ms.create_sphere(subdiv=4)
+    ms.compute_matrix_from_translation(axisx=0.7, axisy=0.2, axisz=0.1)
+    ref = reference([ms.mesh(0), ms.mesh(1)])
+    r = unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert r["intersection_lines"] == 1
+    assert check_union(ms, 2) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
+
+
+def test_sphere_and_cylinder_volume_and_lines():
+    ms = sphere_and_cylinder()
+    ref = reference([ms.mesh(0), ms.mesh(1)])
+    r = unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert r["intersection_lines"] == 2
+    assert check_union(ms, 2) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
+
+
+def test_sliver_step_raises_the_minimum_angle_on_sphere_and_cylinder():
+    ms = sphere_and_cylinder()
+    input_min = min(angles(ms.mesh(i)).min() for i in range(2))
+    raw = unite(ms, bodies=LAYERS, sliver_angle=0)
+    ms = sphere_and_cylinder()  # a fresh set: the first union is a visible layer too
+    improved = unite(ms, bodies=LAYERS, sliver_angle=10)
+    assert improved["slivers_collapsed"] > 0
+    assert improved["min_angle"] > raw["min_angle"]
+    measured = angles(ms.mesh(2)).min()
+    assert measured == pytest.approx(improved["min_angle"], abs=1e-9)
+    print(f"input min {input_min:.2f}, raw {raw['min_angle']:.3f}, improved {improved['min_angle']:.3f} deg")
+
+
+def test_inputs_are_untouched_and_result_is_a_new_layer():
+    ms = sphere_and_cylinder()
+    before = [snapshot(ms.mesh(i)) for i in range(2)]
+    unite(ms, bodies=LAYERS)
+    assert ms.mesh_number() == 3 and ms.current_mesh_id() == 2
+    for i in range(2):
+        assert_unchanged(before[i], ms.mesh(i))
+
+
+def test_invisible_layers_are_not_bodies():
+    ms = cube_set([(0, 0, 0), (0.5, 0, 0), (5, 0, 0)])
+    ms.set_mesh_visibility(2, False)
+    r = unite(ms, bodies=LAYERS)
+    assert r["bodies"] == 2
+
+
+def test_open_body_is_named_and_nothing_changes():
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(subdiv=2)
+    ms.create_cube()
+    ms.compute_selection_by_condition_per_face(condselect="fi == 0")
+    ms.meshing_remove_selected_faces()
+    before = [snapshot(ms.mesh(i)) for i in range(2)]
+    with raises_on(ms, r"body 1 \(.*\) is not closed"):
+        unite(ms, bodies=LAYERS)
+    assert ms.mesh_number() == 2
+    for i in range(2):
+        assert_unchanged(before[i], ms.mesh(i))
+
+
+def test_non_manifold_body_is_named():
+    ms = pymeshlab.MeshSet()
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [0, 0, -1], [1, 1, 1]], dtype=float)
+    # Tetrahedron plus a fin on edge (0, 1): edge (0, 1) has three faces.
+    f = np.array([[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2], [0, 1, 5]])
+    ms.add_mesh(pymeshlab.Mesh(v, f))
+    with raises_on(ms, "non-manifold|not closed"):
+        unite(ms, bodies=COMPONENTS)
+
+
+def test_nan_body_is_named():
+    ms = pymeshlab.MeshSet()
+    ms.create_cube()
+    v = ms.current_mesh().vertex_matrix().copy()
+    v[3, 1] = np.nan
+    ms.add_mesh(pymeshlab.Mesh(v, ms.current_mesh().face_matrix()))
+    with raises_on(ms, r"body 1 .*NaN"):
+        unite(ms, bodies=LAYERS)
+
+
+def test_layer_without_faces_is_named():
+    ms = pymeshlab.MeshSet()
+    ms.create_cube()
+    ms.add_mesh(pymeshlab.Mesh(np.random.default_rng(1).random((20, 3))))
+    with raises_on(ms, r"body 1 .*empty"):
+        unite(ms, bodies=LAYERS)
+
+
+def test_point_cloud_components_fail_cleanly():
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(np.random.default_rng(1).random((20, 3))))
+    with raises_on(ms, "no faces"):
+        unite(ms, bodies=COMPONENTS)
+
+
+def test_sphere_cluster():
+    rng = np.random.default_rng(7)
+    centres = rng.random((30, 3)) * 3
+    ms = pymeshlab.MeshSet()
+    for c in centres:
+        ms.create_sphere(radius=0.5, subdiv=2)
+        ms.compute_matrix_from_translation(axisx=c[0], axisy=c[1], axisz=c[2])
+    ref = reference([ms.mesh(i) for i in range(len(centres))])
+    r = unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert r["bodies"] == 30
+    assert check_union(ms, ms.mesh_number() - 1) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
+
+
+def test_self_intersection_check_sees_real_intersections():
+    ms = cube_set([(0, 0, 0), (0.5, 0.3, 0.2)])
+    ms.generate_by_merging_visible_meshes()
+    assert self_intersecting_faces(ms.current_mesh()) > 0
+
+
+def test_pipeline_union_then_regrid_keeps_the_line_and_reaches_30_degrees():
+    from meshregrid import pipeline_union
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(shared_mesh("multicomponent/ballA.off")))
+    ms.load_new_mesh(str(shared_mesh("multicomponent/ballB.off")))
+    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
+    regrid = r["remesh"]
+    assert regrid["unmeshed_sides"] == 0
+    assert regrid["lines"] >= r["intersection_lines"] == 1
+    assert regrid["min_angle"] >= 30.0
+    m = ms.current_mesh()
+    assert m.face_number() == regrid["faces"]
+    assert angles(m).min() >= 30.0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
+
+def test_cli_union_writes_union_and_lines(tmp_path):
+    import json
+    import subprocess
+    import sys
+    out, lines = tmp_path / "u.ply", tmp_path / "l.obj"
+    a = shared_mesh("multicomponent/ballA.off")
+    b = shared_mesh("multicomponent/ballB.off")
+    proc = subprocess.run([sys.executable, "-m", "meshregrid", "union", str(a), str(b), str(out), "--lines", str(lines)],
+                          capture_output=True, text=True, check=True)
+    result = json.loads(proc.stdout)
+    assert result["bodies"] == 2 and result["intersection_lines"] == 1
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(out))
+    assert ms.current_mesh().face_number() == result["faces"]
+    records = lines.read_text().split("\n")
+    assert sum(r.startswith("l ") for r in records) == result["intersection_edges"]
+
+
+def test_cli_union_components_of_one_file(tmp_path):
+    import json
+    import subprocess
+    import sys
+    out = tmp_path / "rabbit.ply"
+    src = shared_mesh("multicomponent/rabbit.obj")
+    proc = subprocess.run([sys.executable, "-m", "meshregrid", "union", str(src), str(out), "--components"],
+                          capture_output=True, text=True, check=True)
+    assert json.loads(proc.stdout)["bodies"] == 9
+
+
+def test_sliver_step_on_a_ten_sphere_cluster_leaves_no_face_under_5_degrees():
+    # Icospheres (smallest angle 54 deg); the raw cut has about 400 faces under 5 deg.
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(radius=0.5, subdiv=3)
+    v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
+    centres = np.random.default_rng(1).random((10, 3)) * 10 ** (1 / 3) * 0.9
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(np.concatenate([v + c for c in centres]),
+                               np.concatenate([f + i * len(v) for i in range(10)])))
+    parts = [pymeshlab.Mesh(v + c, f) for c in centres]
+    ref = reference(parts)
+    r = unite(ms, bodies=COMPONENTS)
+    assert r["bodies"] == 10
+    assert angles(ms.mesh(1)).min() >= 5.0
+    assert check_union(ms, 1) == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL)
+
+
+def test_bug_radial_order_at_an_edge_of_1e_16_between_nearly_coincident_poles():
+    # Found by fuzzing: C's top pole (0.6, 0.8, 0.5) and D's left pole (1.1 - 0.5, ...)
+    # differ by one ulp, so the cut has an edge of length ~1e-16; the radial order of the
+    # faces around it was taken from doubles and picked wrongly oriented faces (58
+    # orientation conflicts, duplicated faces). The order is now decided exactly.
+    ms = pymeshlab.MeshSet()
+    for off in ((0.6, 0.8, 0.0), (1.1, 0.8, 0.5)):
+        ms.create_sphere(radius=0.5, subdiv=2)
+        ms.compute_matrix_from_translation(axisx=off[0], axisy=off[1], axisz=off[2])
+    ref = reference([ms.mesh(0), ms.mesh(1)])
+    r = unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert r["orientation_conflicts"] == 0
+    assert check_union(ms, 2) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
+
+
+def test_bug_sphere_touching_a_cube_face_with_its_pole_was_removed():
+    # Found by fuzzing: the sphere's extreme vertex (its +x pole) lies on the cube's face,
+    # so the winding-number test at that vertex said "inside" and the sphere vanished.
+    # Pieces are now tested at points that decide clearly (face centroids first).
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(radius=0.5, subdiv=2)
+    ms.compute_matrix_from_translation(axisx=0, axisy=0.75, axisz=0.75)
+    sphere_volume = ms.get_geometric_measures()["mesh_volume"]
+    ms.create_cube(size=1)
+    ms.compute_matrix_from_translation(axisx=1, axisy=0.5, axisz=0.5)
+    r = unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert r["intersecting_pairs"] == 1  # they touch at one point
+    assert check_union(ms, 2) == pytest.approx(sphere_volume + 1.0, rel=1e-12)
+    assert ms.get_topological_measures()["connected_components_number"] == 2
+
+
+def test_bug_identical_copy_inside_a_cluster_emptied_the_union():
+    # Found by fuzzing: body 4 is an exact copy of body 2, so all its faces are dropped as
+    # duplicates; the one piece of the arrangement was then tested against body 4 as if it
+    # did not meet it, found "inside", and the result was empty. Bodies connected through
+    # intersections are no longer used for that test.
+    ms0 = pymeshlab.MeshSet()
+    ms0.create_sphere(radius=0.5, subdiv=2)
+    v, f = ms0.current_mesh().vertex_matrix(), ms0.current_mesh().face_matrix()
+    spheres = [((0.5, 1, 0.5), 0.5), ((0.5, 1, 1), 1.5), ((0.5, 0, 0.5), 1.0), ((0, 1, 0.5), 1.0),
+               ((0.5, 0, 0.5), 1.0), ((1, 0, 0), 1.0), ((0, 0.5, 0.5), 1.5)]
+    ms = pymeshlab.MeshSet()
+    for centre, radius in spheres:
+        ms.add_mesh(pymeshlab.Mesh(v * radius * 2 + np.array(centre), f))
+    ref = reference([ms.mesh(i) for i in range(len(spheres))])
+    unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert check_union(ms, len(spheres)) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
+
+
+def _scaled_spheres(spheres):
+    ms0 = pymeshlab.MeshSet()
+    ms0.create_sphere(radius=0.5, subdiv=2)
+    v, f = ms0.current_mesh().vertex_matrix(), ms0.current_mesh().face_matrix()
+    ms = pymeshlab.MeshSet()
+    for centre, radius in spheres:
+        ms.add_mesh(pymeshlab.Mesh(v * radius * 2 + np.array(centre), f))
+    return ms
+
+
+def test_bug_sphere_inside_another_touching_it_was_kept():
+    # Found by fuzzing (seed 324): a small sphere inside a big one, touching it, was
+    # skipped by the inside test and kept (volume 3% too large).
+    spheres = [((0, 0, 0.5), 1.5), ((0.5, 0.5, 0), 0.5), ((0.5, 0.5, 1), 0.5), ((0, 0, 1), 1.5)]
+    ms = _scaled_spheres(spheres)
+    ref = reference([ms.mesh(i) for i in range(len(spheres))])
+    unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert check_union(ms, len(spheres)) == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
+
+
+def test_bug_start_face_chosen_from_rounded_normals_at_a_shared_pole():
+    # Found by fuzzing (seeds 654, 874, 934, 189): a sphere scaled by 1/2 about a pole of
+    # another lies inside it, with faces around the shared pole tilted against the big
+    # sphere's by ~1e-16. The fill's start face at the extreme vertex (that pole) was picked
+    # from double-precision normals and could be the inner sphere's face; the fill then ran
+    # on the wrong side (orientation conflicts). The choice is now exact.
+    spheres = [((0, 1, 1), 0.5), ((1, 0.5, 0.5), 0.5), ((0.5, 0.5, 0.5), 1.0)]
+    ms = _scaled_spheres(spheres)
+    ref = reference([ms.mesh(i) for i in range(3)])
+    r = unite(ms, bodies=LAYERS, sliver_angle=0)
+    assert r["orientation_conflicts"] == 0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    assert ms.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
+    # Known limit: the exact result has faces 1e-16 apart here; rounded to doubles, 3-4 faces
+    # cross (docs/union.md, "Limits"). The sliver step, whose moves are checked exactly,
+    # is not asked to repair that.
+    assert self_intersecting_faces(ms.current_mesh()) <= 8  # (MeshLab's flags vary by run)
