@@ -78,6 +78,10 @@ private:
   Point3 normal_towards(int v, const Point3& reference) const;
   void seed_triangle();
   double estimated_faces() const;
+  bool edge_taken(int x, int y) const;
+  bool over_other_patch(int a, int b, int c) const;
+  void close_small_loops();
+  void close_loop(std::vector<int> loop);
 
   OutputMesh& out_;
   int patch_;
@@ -137,6 +141,7 @@ void PatchMesher::add_triangle(int a, int b, int c) {
   for (int z = 0; z < 3; ++z) {
     const int x = tri[z], y = tri[(z + 1) % 3];
     used_.insert(directed(x, y));
+    if (out_.is_shared(x, y)) out_.shared_edges.insert(OutputMesh::edge_key(x, y));
     auto it = front_.find(directed(x, y));
     if (it != front_.end()) remove_side(it->second);
     else add_side(y, x, n);
@@ -214,9 +219,10 @@ bool PatchMesher::valid_triangle(int a, int b, const Point3& q, int q_id, const 
     for (const auto& s : sides) {
       const auto key = directed(s[0], s[1]);
       if (front_.count(key)) continue;
-      if (used_.count(key) || front_.count(directed(s[1], s[0])) || used_.count(directed(s[1], s[0]))) { last_reason_ = 4; return false; }
+      if (edge_taken(s[0], s[1])) { last_reason_ = 4; return false; }
     }
   }
+  if (q_id >= 0 && over_other_patch(a, b, q_id)) { last_reason_ = 10; return false; }
   // 2D crossing and containment against nearby front sides and points on the same side of the surface.
   const double eps = 1e-9 * L * L;
   const double reach = std::max({L, (q - pa).Norm(), (q - pb).Norm()}) + h;
@@ -374,6 +380,102 @@ void PatchMesher::seed_triangle() {
   add_triangle(ids[0], ids[1], ids[2]);
 }
 
+// Would a new face edge x->y (not closing a front side) duplicate an edge? Within the patch any
+// generated edge or reversed front side; across patches an edge between shared points.
+bool PatchMesher::edge_taken(int x, int y) const {
+  if (used_.count(directed(x, y)) || used_.count(directed(y, x)) || front_.count(directed(y, x))) return true;
+  return out_.is_shared(x, y) && out_.shared_edges.count(OutputMesh::edge_key(x, y)) > 0;
+}
+
+// A face on three line or corner points can span a whole other patch: a tiny island patch seen
+// from around it, whose outline looks like a hole of this patch where the scan folds. Such a
+// face lies over the other patch's faces, not over this patch's.
+bool PatchMesher::over_other_patch(int a, int b, int c) const {
+  if (!out_.is_shared(a, b) || out_.kind[c] == PointKind::Free) return false;
+  const Point3 centre = (out_.points[a] + out_.points[b] + out_.points[c]) / 3.0;
+  const double L = std::max((out_.points[a] - out_.points[b]).Norm(), (out_.points[c] - out_.points[a]).Norm());
+  const Projection any = loc_.locate(centre, -1, Point3(0, 0, 0), -1, L);
+  if (any.face < 0 || loc_.surface().group[any.face] == patch_) return false;
+  const Projection own = loc_.locate(centre, patch_, Point3(0, 0, 0), -1, L);
+  return own.face < 0 || own.distance > any.distance + 1e-6 * L;
+}
+
+// Last resort for what the front could not close (tiny folds of a noisy scan, slivers between
+// nearly coincident lines): every loop of front sides with at most kMaxLoop sides is split at
+// repeated points and closed by ear clipping, so the output stays manifold; the shape of these
+// few faces is secondary. Longer loops stay open and are reported.
+void PatchMesher::close_small_loops() {
+  constexpr size_t kMaxLoop = 16;
+  std::unordered_map<int, std::vector<int>> outgoing;  // point -> alive sides leaving it
+  for (const auto& [key, s] : front_) outgoing[sides_[s].a].push_back(s);
+  for (auto& [v, list] : outgoing) std::sort(list.begin(), list.end());  // deterministic order
+  std::unordered_set<int> visited;
+  std::vector<int> sorted_sides;
+  for (const auto& [key, s] : front_) sorted_sides.push_back(s);
+  std::sort(sorted_sides.begin(), sorted_sides.end());
+  std::vector<std::vector<int>> loops;
+  for (int start : sorted_sides) {
+    if (visited.count(start)) continue;
+    // Walk the sides; a point met twice closes a simple loop, which is cut out of the path.
+    std::vector<int> path{sides_[start].a};
+    std::unordered_map<int, size_t> position{{sides_[start].a, 0}};
+    int s = start;
+    bool closed = false;
+    while (s >= 0 && !visited.count(s)) {
+      visited.insert(s);
+      const int b = sides_[s].b;
+      auto at = position.find(b);
+      if (at != position.end()) {
+        loops.emplace_back(path.begin() + long(at->second), path.end());
+        for (size_t k = at->second + 1; k < path.size(); ++k) position.erase(path[k]);
+        path.resize(at->second + 1);
+        closed = path.size() == 1;
+      } else {
+        position[b] = path.size();
+        path.push_back(b);
+      }
+      s = -1;
+      for (int next : outgoing[b]) if (!visited.count(next)) { s = next; break; }
+      if (closed && s < 0) break;
+    }
+  }
+  for (auto& loop : loops) {
+    if (loop.size() < 3 || loop.size() > kMaxLoop) continue;
+    // Only a loop running counter-clockwise about the surface bounds a hole to fill; a clockwise
+    // one goes around something already meshed (another patch) and filling it would cover it twice.
+    Point3 area(0, 0, 0), normal(0, 0, 0);
+    for (size_t k = 0; k < loop.size(); ++k) {
+      area += out_.points[loop[k]] ^ out_.points[loop[(k + 1) % loop.size()]];
+      normal += local(loop[k]).normal;
+    }
+    if (area * normal > 0) close_loop(std::move(loop));
+  }
+}
+
+// Ear clipping of one simple loop (the unmeshed part lies to its left): the ear with the largest
+// smallest angle whose new side is not taken, preferring ears that agree with the surface normal.
+void PatchMesher::close_loop(std::vector<int> loop) {
+  while (loop.size() > 3) {
+    const size_t n = loop.size();
+    int best = -1;
+    double best_score = -std::numeric_limits<double>::max();
+    for (size_t i = 0; i < n; ++i) {
+      const int a = loop[(i + n - 1) % n], b = loop[i], c = loop[(i + 1) % n];
+      if (a == c || edge_taken(c, a) || over_other_patch(a, b, c)) continue;
+      const Point3 &pa = out_.points[a], &pb = out_.points[b], &pc = out_.points[c];
+      const Point3 surface_normal = local(a).normal + local(b).normal + local(c).normal;
+      const double agree = unit_normal(pa, pb, pc) * surface_normal > 0 ? 1.0 : 0.0;
+      const double score = agree * 10.0 + min_angle(pa, pb, pc);
+      if (score > best_score) { best_score = score; best = int(i); }
+    }
+    if (best < 0) return;  // every ear would duplicate an edge: leave the loop open
+    const size_t i = size_t(best);
+    add_triangle(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n]);
+    loop.erase(loop.begin() + long(i));
+  }
+  if (!over_other_patch(loop[0], loop[1], loop[2])) add_triangle(loop[0], loop[1], loop[2]);
+}
+
 double PatchMesher::estimated_faces() const {
   const Surface& s = loc_.surface();
   double area = 0;
@@ -405,6 +507,7 @@ FrontResult PatchMesher::run(std::vector<FrontSide> front) {
       queue_.push({front_priority(len, sides_[s].failures), s});
     }
   }
+  if (!front_.empty()) close_small_loops();
   result_.unmeshed_sides = int(front_.size());
   return result_;
 }

@@ -121,7 +121,9 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   const FeatureFront ff = discretise_features(input, fr, surface, size, out);
   result.feature_edges = int(ff.feature_edges.size());
 
+  result.merged_lines = ff.merged_lines;
   for (int patch = 0; patch < fr.patch_count; ++patch) {
+    if (ff.dropped_patch[patch]) continue;  // a sliver between twin lines: nothing fits in it
     progress(params, 15 + int(65.0 * patch / std::max(fr.patch_count, 1)), "Advancing the front");
     const FrontResult r = advance_front(out, ff.patch_front[patch], patch, locator, size);
     result.unmeshed_sides += r.unmeshed_sides;

@@ -76,7 +76,7 @@ def test_remesh_against_isotropic(name):
     # Topology: manifold, oriented, same genus and boundary.
     topo = ms.get_topological_measures()
     assert topo["non_two_manifold_edges"] == 0
-    assert topo["boundary_edges"] == topo_in["boundary_edges"]
+    assert topo["number_holes"] == topo_in["number_holes"]
     assert topo["genus"] == topo_in["genus"]
     assert topo["connected_components_number"] == topo_in["connected_components_number"]
     e, oriented = edges(out)
@@ -111,6 +111,26 @@ def test_remesh_against_isotropic(name):
     in_range = np.mean((lengths >= 0.7 * target) & (lengths <= 1.4 * target))
     if name.startswith("cad/"):  # rocker-arm: 79%, refined around its ~700 short creases (known, see issue notes)
         assert in_range >= 0.95
+
+
+def test_bunny_with_holes_stays_manifold_with_its_holes_and_genus():
+    """Regression: the open, noisy bunny scan used to come out non-manifold (a sliver patch between
+    two nearly coincident ridge lines and a one-triangle island patch at a fold were covered twice,
+    and small front loops stayed open). At 1% of the diagonal (about 11 s here): manifold edges and
+    vertices, one component, consistent orientation, the input's 5 boundary loops and genus 0 exactly."""
+    ms = load("organic/stanford-bunny.obj")
+    topo_in = ms.get_topological_measures()
+    target = 0.01 * ms.current_mesh().bounding_box().diagonal()
+    res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(target), ridge_angle=RIDGE_ANGLE)
+    assert res["unmeshed_sides"] == 0
+    assert res["merged_lines"] >= 1  # the sliver between twin lines is there at this size
+    topo = ms.get_topological_measures()
+    assert topo["non_two_manifold_edges"] == 0 and topo["non_two_manifold_vertices"] == 0
+    assert topo["connected_components_number"] == topo_in["connected_components_number"] == 1
+    assert topo["number_holes"] == topo_in["number_holes"] == 5
+    assert topo["genus"] == topo_in["genus"] == 0
+    _, oriented = edges(ms.current_mesh())
+    assert oriented
 
 
 def cad_cylinder(radius=10.0, height=200.0, segments=500):
