@@ -17,6 +17,7 @@ double front_priority(double side_length, int failures) { return side_length * (
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr size_t kMaxLastResortLoop = 16;  // longer loops left by the front stay open (reported)
 
 std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
 
@@ -80,7 +81,7 @@ private:
   double estimated_faces() const;
   bool edge_taken(int x, int y) const;
   bool over_other_patch(int a, int b, int c) const;
-  void close_small_loops();
+  void close_loops(size_t max_sides);
   void close_loop(std::vector<int> loop);
 
   OutputMesh& out_;
@@ -400,12 +401,12 @@ bool PatchMesher::over_other_patch(int a, int b, int c) const {
   return own.face < 0 || own.distance > any.distance + 1e-6 * L;
 }
 
-// Last resort for what the front could not close (tiny folds of a noisy scan, slivers between
-// nearly coincident lines): every loop of front sides with at most kMaxLoop sides is split at
-// repeated points and closed by ear clipping, so the output stays manifold; the shape of these
-// few faces is secondary. Longer loops stay open and are reported.
-void PatchMesher::close_small_loops() {
-  constexpr size_t kMaxLoop = 16;
+// Closes loops of front sides by ear clipping: the last resort for what the front could not
+// close (tiny folds of a noisy scan; loops of at most `max_sides` sides, longer ones stay open and
+// are reported), and the whole meshing of a thin strip, where clipping the best-shaped ears from
+// its ends zips its two lines together. Loops are split at repeated points; no edge is reused,
+// so the output stays manifold.
+void PatchMesher::close_loops(size_t max_sides) {
   std::unordered_map<int, std::vector<int>> outgoing;  // point -> alive sides leaving it
   for (const auto& [key, s] : front_) outgoing[sides_[s].a].push_back(s);
   for (auto& [v, list] : outgoing) std::sort(list.begin(), list.end());  // deterministic order
@@ -440,7 +441,7 @@ void PatchMesher::close_small_loops() {
     }
   }
   for (auto& loop : loops) {
-    if (loop.size() < 3 || loop.size() > kMaxLoop) continue;
+    if (loop.size() < 3 || loop.size() > max_sides) continue;
     // Only a loop running counter-clockwise about the surface bounds a hole to fill; a clockwise
     // one goes around something already meshed (another patch) and filling it would cover it twice.
     Point3 area(0, 0, 0), normal(0, 0, 0);
@@ -453,25 +454,33 @@ void PatchMesher::close_small_loops() {
 }
 
 // Ear clipping of one simple loop (the unmeshed part lies to its left): the ear with the largest
-// smallest angle whose new side is not taken, preferring ears that agree with the surface normal.
+// smallest angle (looking one ear ahead) whose new side is not taken and that lies over this
+// patch, preferring ears that agree with the surface normal.
 void PatchMesher::close_loop(std::vector<int> loop) {
+  std::vector<std::pair<double, size_t>> ears;
   while (loop.size() > 3) {
     const size_t n = loop.size();
-    int best = -1;
-    double best_score = -std::numeric_limits<double>::max();
+    ears.clear();
     for (size_t i = 0; i < n; ++i) {
       const int a = loop[(i + n - 1) % n], b = loop[i], c = loop[(i + 1) % n];
-      if (a == c || edge_taken(c, a) || over_other_patch(a, b, c)) continue;
+      if (a == c || edge_taken(c, a)) continue;
       const Point3 &pa = out_.points[a], &pb = out_.points[b], &pc = out_.points[c];
       const Point3 surface_normal = local(a).normal + local(b).normal + local(c).normal;
       const double agree = unit_normal(pa, pb, pc) * surface_normal > 0 ? 1.0 : 0.0;
-      const double score = agree * 10.0 + min_angle(pa, pb, pc);
-      if (score > best_score) { best_score = score; best = int(i); }
+      // One step ahead: an ear that leaves only flat ears beside it (three points on one line,
+      // as where a strip's zipper meets) is worth no more than they are.
+      const Point3 &pl = out_.points[loop[(i + n - 2) % n]], &pr = out_.points[loop[(i + 2) % n]];
+      const double ahead = std::max(min_angle(pl, pa, pc), min_angle(pa, pc, pr));
+      ears.push_back({agree * 10.0 + std::min(min_angle(pa, pb, pc), ahead), i});
     }
-    if (best < 0) return;  // every ear would duplicate an edge: leave the loop open
-    const size_t i = size_t(best);
-    add_triangle(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n]);
-    loop.erase(loop.begin() + long(i));
+    // Best first; the costlier check against other patches only until one passes.
+    std::sort(ears.begin(), ears.end(), std::greater<>());
+    size_t chosen = n;
+    for (const auto& [score, i] : ears)
+      if (!over_other_patch(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n])) { chosen = i; break; }
+    if (chosen == n) return;  // every ear would duplicate an edge or cover another patch: leave it open
+    add_triangle(loop[(chosen + n - 1) % n], loop[chosen], loop[(chosen + 1) % n]);
+    loop.erase(loop.begin() + long(chosen));
   }
   if (!over_other_patch(loop[0], loop[1], loop[2])) add_triangle(loop[0], loop[1], loop[2]);
 }
@@ -491,6 +500,12 @@ double PatchMesher::estimated_faces() const {
 FrontResult PatchMesher::run(std::vector<FrontSide> front) {
   for (const auto& s : front)
     if (s[0] != s[1] && !front_.count(directed(s[0], s[1]))) add_side(s[0], s[1]);
+  if (params_.thin_patch) {
+    // No front layer fits: one layer of faces straight between the boundary lines.
+    close_loops(std::numeric_limits<size_t>::max());
+    result_.unmeshed_sides = int(front_.size());
+    return result_;
+  }
   if (front_.empty()) seed_triangle();
   const double limit = 20.0 * (estimated_faces() + double(sides_.size())) + 1000.0;
   while (!queue_.empty()) {
@@ -507,7 +522,7 @@ FrontResult PatchMesher::run(std::vector<FrontSide> front) {
       queue_.push({front_priority(len, sides_[s].failures), s});
     }
   }
-  if (!front_.empty()) close_small_loops();
+  if (!front_.empty()) close_loops(kMaxLastResortLoop);
   result_.unmeshed_sides = int(front_.size());
   return result_;
 }

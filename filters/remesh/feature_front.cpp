@@ -22,6 +22,17 @@ struct VertexFaces {
   }
 };
 
+double distance_to_polyline(const Point3& p, const std::vector<Point3>& to) {
+  double best = to.empty() ? std::numeric_limits<double>::max() : (p - to[0]).Norm();
+  for (size_t k = 0; k + 1 < to.size(); ++k) {
+    const Point3 d = to[k + 1] - to[k];
+    const double len2 = d.SquaredNorm();
+    const double t = len2 > 0 ? std::clamp(((p - to[k]) * d) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (to[k] + d * t - p).Norm());
+  }
+  return best;
+}
+
 // Integral of 1/h along each segment (h linear along the segment, trapezoid of the ends).
 std::vector<double> normalised_lengths(const std::vector<double>& lengths, const std::vector<double>& sizes) {
   std::vector<double> out(lengths.size());
@@ -79,21 +90,40 @@ Slivers find_slivers(const features::Result& fr, const Surface& s, const VertexF
   return sl;
 }
 
+// A thin strip (the rim of a thin plate): every face has its vertices on lines and is lower than
+// kSliverGap x size, and the patch's mean width, twice its area over its perimeter, is below
+// kSliverGap x size too (the sliver fans of a CAD cap or cylinder side are wide patches).
+std::vector<char> find_thin_patches(const features::Result& fr, const Surface& s, const SizeField& size) {
+  std::vector<char> on_line(s.points.size(), 0);
+  for (const auto& line : fr.lines) for (int v : line.vertices) on_line[v] = 1;
+  std::vector<char> thin(fr.patch_count, 1);
+  std::vector<double> area(fr.patch_count, 0.0), perimeter(fr.patch_count, 0.0);
+  std::vector<double> h_min(fr.patch_count, std::numeric_limits<double>::max());
+  for (size_t f = 0; f < s.faces.size(); ++f) {
+    const auto& t = s.faces[f];
+    const int g = s.group[f];
+    const Point3 &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
+    const double longest = std::max({(b - a).Norm(), (c - b).Norm(), (a - c).Norm()});
+    const double twice_area = ((b - a) ^ (c - a)).Norm();
+    const double h = std::min({size.at_vertex(t[0]), size.at_vertex(t[1]), size.at_vertex(t[2])});
+    if (!on_line[t[0]] || !on_line[t[1]] || !on_line[t[2]] || (longest > 0 ? twice_area / longest : 0.0) > kSliverGap * h)
+      thin[g] = 0;
+    area[g] += 0.5 * twice_area;
+    h_min[g] = std::min(h_min[g], h);
+    for (int z = 0; z < 3; ++z)
+      if (fr.ridge[f][z]) perimeter[g] += (s.points[t[(z + 1) % 3]] - s.points[t[z]]).Norm();
+  }
+  for (int g = 0; g < fr.patch_count; ++g)
+    if (thin[g] && !(perimeter[g] > 0 && 2.0 * area[g] / perimeter[g] <= kSliverGap * h_min[g])) thin[g] = 0;
+  return thin;
+}
+
 }  // namespace
 
 double polyline_gap(const std::vector<Point3>& a, const std::vector<Point3>& b) {
   auto one_way = [](const std::vector<Point3>& from, const std::vector<Point3>& to) {
     double worst = 0;
-    for (const Point3& p : from) {
-      double best = to.empty() ? std::numeric_limits<double>::max() : (p - to[0]).Norm();
-      for (size_t k = 0; k + 1 < to.size(); ++k) {
-        const Point3 d = to[k + 1] - to[k];
-        const double len2 = d.SquaredNorm();
-        const double t = len2 > 0 ? std::clamp(((p - to[k]) * d) / len2, 0.0, 1.0) : 0.0;
-        best = std::min(best, (to[k] + d * t - p).Norm());
-      }
-      worst = std::max(worst, best);
-    }
+    for (const Point3& p : from) worst = std::max(worst, distance_to_polyline(p, to));
     return worst;
   };
   return std::max(one_way(a, b), one_way(b, a));
@@ -128,6 +158,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
 
   const Slivers slivers = find_slivers(fr, s, vf, size);
   ff.dropped_patch = slivers.dropped_patch;
+  ff.thin_patch = find_thin_patches(fr, s, size);
   std::vector<std::vector<int>> line_points(fr.lines.size());
   // Lines with a twin last, so the twin's points exist when they are reused.
   std::vector<int> order;

@@ -19,6 +19,9 @@ struct FeatureFront {
   std::vector<int> corner_point;                    ///< output point of each input corner (same order)
   /// Sliver patches between two nearly coincident lines: not meshed (their lines share points).
   std::vector<char> dropped_patch;
+  /// Patches whose faces all span between line points and are lower than kSliverGap x size:
+  /// a thin strip (the rim of a thin plate) that takes one layer of faces between its lines.
+  std::vector<char> thin_patch;
   int merged_lines = 0;  ///< lines that took the points of a nearly coincident twin
 };
 

@@ -125,7 +125,10 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   for (int patch = 0; patch < fr.patch_count; ++patch) {
     if (ff.dropped_patch[patch]) continue;  // a sliver between twin lines: nothing fits in it
     progress(params, 15 + int(65.0 * patch / std::max(fr.patch_count, 1)), "Advancing the front");
-    const FrontResult r = advance_front(out, ff.patch_front[patch], patch, locator, size);
+    FrontParams fp_patch;
+    fp_patch.thin_patch = ff.thin_patch[patch] != 0;
+    result.thin_patches += fp_patch.thin_patch ? 1 : 0;
+    const FrontResult r = advance_front(out, ff.patch_front[patch], patch, locator, size, fp_patch);
     result.unmeshed_sides += r.unmeshed_sides;
     if (r.unmeshed_sides > 0 || r.iteration_limit) result.unmeshed_patches++;
   }

@@ -140,6 +140,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"unmeshed_sides", QVariant(r.unmeshed_sides)},
       {"unmeshed_patches", QVariant(r.unmeshed_patches)},
       {"merged_lines", QVariant(r.merged_lines)},
+      {"thin_patches", QVariant(r.thin_patches)},
       {"swaps", QVariant(r.swaps)},
       {"smoothed", QVariant(r.smoothed)},
       {"target_length", QVariant(p.target_length)},

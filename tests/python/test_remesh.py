@@ -133,6 +133,28 @@ def test_bunny_with_holes_stays_manifold_with_its_holes_and_genus():
     assert oriented
 
 
+def test_blade_thin_rims_are_meshed_and_keep_topology():
+    """Regression: cad/blade.off is a thin plate whose two rims are strips 0.033 wide (2.5% of the
+    1% target) between ridge lines; no front layer fits there, they were left unmeshed (410 front
+    sides) and the output fell into two components. They now get one layer of faces between their
+    lines: manifold, one component, the input's 2 boundary loops and genus 0 exactly, and the
+    worst angle no lower than MeshLab's isotropic remesher reports there (1.0 degrees)."""
+    ms = load("cad/blade.off")
+    topo_in = ms.get_topological_measures()
+    target = 0.01 * ms.current_mesh().bounding_box().diagonal()
+    res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(target), ridge_angle=RIDGE_ANGLE)
+    assert res["unmeshed_sides"] == 0
+    assert res["thin_patches"] == 2
+    topo = ms.get_topological_measures()
+    assert topo["non_two_manifold_edges"] == 0 and topo["non_two_manifold_vertices"] == 0
+    assert topo["connected_components_number"] == topo_in["connected_components_number"] == 1
+    assert topo["number_holes"] == topo_in["number_holes"] == 2
+    assert topo["genus"] == topo_in["genus"] == 0
+    _, oriented = edges(ms.current_mesh())
+    assert oriented
+    assert min_angles(ms.current_mesh()).min() >= 1.0
+
+
 def cad_cylinder(radius=10.0, height=200.0, segments=500):
     """A cylinder as CAD exports it: each side triangle spans the full height, caps fanned from one rim vertex."""
     t = 2 * np.pi * np.arange(segments) / segments
