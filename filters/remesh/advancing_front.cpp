@@ -388,17 +388,12 @@ bool PatchMesher::edge_taken(int x, int y) const {
   return out_.is_shared(x, y) && out_.shared_edges.count(OutputMesh::edge_key(x, y)) > 0;
 }
 
-// A face on three line or corner points can span a whole other patch: a tiny island patch seen
-// from around it, whose outline looks like a hole of this patch where the scan folds. Such a
-// face lies over the other patch's faces, not over this patch's.
+// A patch bounded by just three line sides (a tiny island of a noisy scan) owns its one face;
+// the patch around it sees the same three points as a loop of its own front and, where the scan
+// folds, that loop can look fillable: filling it would cover the island twice.
 bool PatchMesher::over_other_patch(int a, int b, int c) const {
-  if (!out_.is_shared(a, b) || out_.kind[c] == PointKind::Free) return false;
-  const Point3 centre = (out_.points[a] + out_.points[b] + out_.points[c]) / 3.0;
-  const double L = std::max((out_.points[a] - out_.points[b]).Norm(), (out_.points[c] - out_.points[a]).Norm());
-  const Projection any = loc_.locate(centre, -1, Point3(0, 0, 0), -1, L);
-  if (any.face < 0 || loc_.surface().group[any.face] == patch_) return false;
-  const Projection own = loc_.locate(centre, patch_, Point3(0, 0, 0), -1, L);
-  return own.face < 0 || own.distance > any.distance + 1e-6 * L;
+  const auto it = out_.island_triangles.find(OutputMesh::triangle_key(a, b, c));
+  return it != out_.island_triangles.end() && it->second != patch_;
 }
 
 // Closes loops of front sides by ear clipping: the last resort for what the front could not

@@ -243,6 +243,11 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       }
     }
   }
+  for (int g = 0; g < fr.patch_count; ++g) {
+    const auto& f = ff.patch_front[g];
+    if (f.size() == 3 && f[0][1] == f[1][0] && f[1][1] == f[2][0] && f[2][1] == f[0][0])
+      out.island_triangles[OutputMesh::triangle_key(f[0][0], f[1][0], f[2][0])] = g;
+  }
   return ff;
 }
 
