@@ -116,7 +116,7 @@ def test_remesh_against_isotropic(name):
 def test_bunny_with_holes_stays_manifold_with_its_holes_and_genus():
     """Regression: the open, noisy bunny scan used to come out non-manifold (a sliver patch between
     two nearly coincident ridge lines and a one-triangle island patch at a fold were covered twice,
-    and small front loops stayed open). At 1% of the diagonal (about 11 s here): manifold edges and
+    and small front loops stayed open). At 1% of the diagonal (about 5 s here): manifold edges and
     vertices, one component, consistent orientation, the input's 5 boundary loops and genus 0 exactly."""
     ms = load("organic/stanford-bunny.obj")
     topo_in = ms.get_topological_measures()
