@@ -109,8 +109,11 @@ def test_remesh_against_isotropic(name):
     assert hausdorff(ours) <= hausdorff(iso)
     lengths = np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1)
     in_range = np.mean((lengths >= 0.7 * target) & (lengths <= 1.4 * target))
-    if name.startswith("cad/"):  # rocker-arm: 79%, refined around its ~700 short creases (known, see issue notes)
+    if name.startswith("cad/"):
         assert in_range >= 0.95
+    else:  # rocker-arm: 87% (81% before the short-crease floor went from a third to half the target);
+        # its ~700 30-degree creases, mostly shorter than the target, are kept and refine around them
+        assert in_range >= 0.85
 
 
 def test_bunny_with_holes_stays_manifold_with_its_holes_and_genus():
