@@ -235,7 +235,8 @@ def main(argv=None):
                 f"{platform.system()}  \nDate: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC  \n"
                 f"Target length {args.percent}% of the bounding-box diagonal, ridge/feature angle {args.ridge_angle} deg. "
                 f"Times include the filters only. Hausdorff: two-sided, PyMeshLab sampling, over the diagonal. "
-                f"Feature fidelity: share of ridge segments farther than 5% of the target from the other side's ridges.\n\n"
+                f"Feature fidelity: share of ridge segments farther than 5% of the target from the other side's ridges. "
+                f"topology_kept: same boundary loops (PyMeshLab number_holes), genus and components as the input.\n\n"
                 + md + f"\nMinimum-angle histograms: `{out / 'remesh_min_angle_hist.png'}`.\n")
         (REPO / "benchmarks" / "remesh.md").write_text(text)
     return 0
