@@ -158,6 +158,24 @@ def test_blade_thin_rims_are_meshed_and_keep_topology():
     assert min_angles(ms.current_mesh()).min() >= 1.0
 
 
+def test_thin_plate_rims_get_one_layer_between_their_ridges():
+    """A 100 x 50 x 0.1 plate at target 2: the four rims (0.1 wide, a twentieth of the size) are
+    thin strips meshed by one layer of faces between their ridges; the plate stays closed, genus 0,
+    and the worst angle is that of one layer at the line spacing, atan(0.1 / 2) = 2.86 degrees."""
+    ms = pymeshlab.MeshSet()
+    ms.create_cube()  # side 2, centred
+    cube = ms.current_mesh()
+    ms.add_mesh(pymeshlab.Mesh(cube.vertex_matrix() * np.array([50.0, 25.0, 0.05]), cube.face_matrix()))
+    res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(2.0))
+    assert res["unmeshed_sides"] == 0 and res["thin_patches"] == 4 and res["corners"] == 8
+    topo = ms.get_topological_measures()
+    assert topo["non_two_manifold_edges"] == 0 and topo["non_two_manifold_vertices"] == 0
+    assert topo["boundary_edges"] == 0 and topo["genus"] == 0 and topo["connected_components_number"] == 1
+    _, oriented = edges(ms.current_mesh())
+    assert oriented
+    assert min_angles(ms.current_mesh()).min() >= np.degrees(np.arctan(0.1 / 2.0)) * 0.95
+
+
 def cad_cylinder(radius=10.0, height=200.0, segments=500):
     """A cylinder as CAD exports it: each side triangle spans the full height, caps fanned from one rim vertex."""
     t = 2 * np.pi * np.arange(segments) / segments
