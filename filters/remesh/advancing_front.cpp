@@ -17,6 +17,7 @@ double front_priority(double side_length, int failures) { return side_length * (
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr size_t kMaxLastResortLoop = 16;  // longer loops left by the front stay open (reported)
 
 std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
 
@@ -78,6 +79,10 @@ private:
   Point3 normal_towards(int v, const Point3& reference) const;
   void seed_triangle();
   double estimated_faces() const;
+  bool edge_taken(int x, int y) const;
+  bool over_other_patch(int a, int b, int c) const;
+  void close_loops(size_t max_sides);
+  void close_loop(std::vector<int> loop);
 
   OutputMesh& out_;
   int patch_;
@@ -137,6 +142,7 @@ void PatchMesher::add_triangle(int a, int b, int c) {
   for (int z = 0; z < 3; ++z) {
     const int x = tri[z], y = tri[(z + 1) % 3];
     used_.insert(directed(x, y));
+    if (out_.is_shared(x, y)) out_.shared_edges.insert(OutputMesh::edge_key(x, y));
     auto it = front_.find(directed(x, y));
     if (it != front_.end()) remove_side(it->second);
     else add_side(y, x, n);
@@ -214,9 +220,10 @@ bool PatchMesher::valid_triangle(int a, int b, const Point3& q, int q_id, const 
     for (const auto& s : sides) {
       const auto key = directed(s[0], s[1]);
       if (front_.count(key)) continue;
-      if (used_.count(key) || front_.count(directed(s[1], s[0])) || used_.count(directed(s[1], s[0]))) { last_reason_ = 4; return false; }
+      if (edge_taken(s[0], s[1])) { last_reason_ = 4; return false; }
     }
   }
+  if (q_id >= 0 && over_other_patch(a, b, q_id)) { last_reason_ = 10; return false; }
   // 2D crossing and containment against nearby front sides and points on the same side of the surface.
   const double eps = 1e-9 * L * L;
   const double reach = std::max({L, (q - pa).Norm(), (q - pb).Norm()}) + h;
@@ -374,6 +381,105 @@ void PatchMesher::seed_triangle() {
   add_triangle(ids[0], ids[1], ids[2]);
 }
 
+// Would a new face edge x->y (not closing a front side) duplicate an edge? Within the patch any
+// generated edge or reversed front side; across patches an edge between shared points.
+bool PatchMesher::edge_taken(int x, int y) const {
+  if (used_.count(directed(x, y)) || used_.count(directed(y, x)) || front_.count(directed(y, x))) return true;
+  return out_.is_shared(x, y) && out_.shared_edges.count(OutputMesh::edge_key(x, y)) > 0;
+}
+
+// A patch bounded by just three line sides (a tiny island of a noisy scan) owns its one face;
+// the patch around it sees the same three points as a loop of its own front and, where the scan
+// folds, that loop can look fillable: filling it would cover the island twice.
+bool PatchMesher::over_other_patch(int a, int b, int c) const {
+  const auto it = out_.island_triangles.find(OutputMesh::triangle_key(a, b, c));
+  return it != out_.island_triangles.end() && it->second != patch_;
+}
+
+// Closes loops of front sides by ear clipping: the last resort for what the front could not
+// close (tiny folds of a noisy scan; loops of at most `max_sides` sides, longer ones stay open and
+// are reported), and the whole meshing of a thin strip, where clipping the best-shaped ears from
+// its ends zips its two lines together. Loops are split at repeated points; no edge is reused,
+// so the output stays manifold.
+void PatchMesher::close_loops(size_t max_sides) {
+  std::unordered_map<int, std::vector<int>> outgoing;  // point -> alive sides leaving it
+  for (const auto& [key, s] : front_) outgoing[sides_[s].a].push_back(s);
+  for (auto& [v, list] : outgoing) std::sort(list.begin(), list.end());  // deterministic order
+  std::unordered_set<int> visited;
+  std::vector<int> sorted_sides;
+  for (const auto& [key, s] : front_) sorted_sides.push_back(s);
+  std::sort(sorted_sides.begin(), sorted_sides.end());
+  std::vector<std::vector<int>> loops;
+  for (int start : sorted_sides) {
+    if (visited.count(start)) continue;
+    // Walk the sides; a point met twice closes a simple loop, which is cut out of the path.
+    std::vector<int> path{sides_[start].a};
+    std::unordered_map<int, size_t> position{{sides_[start].a, 0}};
+    int s = start;
+    bool closed = false;
+    while (s >= 0 && !visited.count(s)) {
+      visited.insert(s);
+      const int b = sides_[s].b;
+      auto at = position.find(b);
+      if (at != position.end()) {
+        loops.emplace_back(path.begin() + long(at->second), path.end());
+        for (size_t k = at->second + 1; k < path.size(); ++k) position.erase(path[k]);
+        path.resize(at->second + 1);
+        closed = path.size() == 1;
+      } else {
+        position[b] = path.size();
+        path.push_back(b);
+      }
+      s = -1;
+      for (int next : outgoing[b]) if (!visited.count(next)) { s = next; break; }
+      if (closed && s < 0) break;
+    }
+  }
+  for (auto& loop : loops) {
+    if (loop.size() < 3 || loop.size() > max_sides) continue;
+    // Only a loop running counter-clockwise about the surface bounds a hole to fill; a clockwise
+    // one goes around something already meshed (another patch) and filling it would cover it twice.
+    Point3 area(0, 0, 0), normal(0, 0, 0);
+    for (size_t k = 0; k < loop.size(); ++k) {
+      area += out_.points[loop[k]] ^ out_.points[loop[(k + 1) % loop.size()]];
+      normal += local(loop[k]).normal;
+    }
+    if (area * normal > 0) close_loop(std::move(loop));
+  }
+}
+
+// Ear clipping of one simple loop (the unmeshed part lies to its left): the ear with the largest
+// smallest angle (looking one ear ahead) whose new side is not taken and that lies over this
+// patch, preferring ears that agree with the surface normal.
+void PatchMesher::close_loop(std::vector<int> loop) {
+  std::vector<std::pair<double, size_t>> ears;
+  while (loop.size() > 3) {
+    const size_t n = loop.size();
+    ears.clear();
+    for (size_t i = 0; i < n; ++i) {
+      const int a = loop[(i + n - 1) % n], b = loop[i], c = loop[(i + 1) % n];
+      if (a == c || edge_taken(c, a)) continue;
+      const Point3 &pa = out_.points[a], &pb = out_.points[b], &pc = out_.points[c];
+      const Point3 surface_normal = local(a).normal + local(b).normal + local(c).normal;
+      const double agree = unit_normal(pa, pb, pc) * surface_normal > 0 ? 1.0 : 0.0;
+      // One step ahead: an ear that leaves only flat ears beside it (three points on one line,
+      // as where a strip's zipper meets) is worth no more than they are.
+      const Point3 &pl = out_.points[loop[(i + n - 2) % n]], &pr = out_.points[loop[(i + 2) % n]];
+      const double ahead = std::max(min_angle(pl, pa, pc), min_angle(pa, pc, pr));
+      ears.push_back({agree * 10.0 + std::min(min_angle(pa, pb, pc), ahead), i});
+    }
+    // Best first; the costlier check against other patches only until one passes.
+    std::sort(ears.begin(), ears.end(), std::greater<>());
+    size_t chosen = n;
+    for (const auto& [score, i] : ears)
+      if (!over_other_patch(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n])) { chosen = i; break; }
+    if (chosen == n) return;  // every ear would duplicate an edge or cover another patch: leave it open
+    add_triangle(loop[(chosen + n - 1) % n], loop[chosen], loop[(chosen + 1) % n]);
+    loop.erase(loop.begin() + long(chosen));
+  }
+  if (!over_other_patch(loop[0], loop[1], loop[2])) add_triangle(loop[0], loop[1], loop[2]);
+}
+
 double PatchMesher::estimated_faces() const {
   const Surface& s = loc_.surface();
   double area = 0;
@@ -389,6 +495,12 @@ double PatchMesher::estimated_faces() const {
 FrontResult PatchMesher::run(std::vector<FrontSide> front) {
   for (const auto& s : front)
     if (s[0] != s[1] && !front_.count(directed(s[0], s[1]))) add_side(s[0], s[1]);
+  if (params_.thin_patch) {
+    // No front layer fits: one layer of faces straight between the boundary lines.
+    close_loops(std::numeric_limits<size_t>::max());
+    result_.unmeshed_sides = int(front_.size());
+    return result_;
+  }
   if (front_.empty()) seed_triangle();
   const double limit = 20.0 * (estimated_faces() + double(sides_.size())) + 1000.0;
   while (!queue_.empty()) {
@@ -405,6 +517,7 @@ FrontResult PatchMesher::run(std::vector<FrontSide> front) {
       queue_.push({front_priority(len, sides_[s].failures), s});
     }
   }
+  if (!front_.empty()) close_loops(kMaxLastResortLoop);
   result_.unmeshed_sides = int(front_.size());
   return result_;
 }

@@ -23,6 +23,9 @@ struct FrontParams {
   /// A side that found no valid triangle is retried this many times (with relaxed checks) before
   /// it is left as an unmeshed front side.
   int max_retries = 4;
+  /// The patch is narrower than the elements (a thin strip between two lines): its boundary
+  /// loops are triangulated directly by ear clipping, one layer of faces, no new points.
+  bool thin_patch = false;
 };
 
 struct FrontResult {

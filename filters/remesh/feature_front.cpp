@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -21,6 +22,17 @@ struct VertexFaces {
   }
 };
 
+double distance_to_polyline(const Point3& p, const std::vector<Point3>& to) {
+  double best = to.empty() ? std::numeric_limits<double>::max() : (p - to[0]).Norm();
+  for (size_t k = 0; k + 1 < to.size(); ++k) {
+    const Point3 d = to[k + 1] - to[k];
+    const double len2 = d.SquaredNorm();
+    const double t = len2 > 0 ? std::clamp(((p - to[k]) * d) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (to[k] + d * t - p).Norm());
+  }
+  return best;
+}
+
 // Integral of 1/h along each segment (h linear along the segment, trapezoid of the ends).
 std::vector<double> normalised_lengths(const std::vector<double>& lengths, const std::vector<double>& sizes) {
   std::vector<double> out(lengths.size());
@@ -28,7 +40,94 @@ std::vector<double> normalised_lengths(const std::vector<double>& lengths, const
   return out;
 }
 
+// A patch no element of the local size fits in: two open lines between the same two corners
+// closer than kSliverGap x size, with every face of the patch between them having all its
+// vertices on the two lines. The twin line gets the points of the first and the patch is dropped.
+constexpr double kSliverGap = 0.1;
+
+struct Slivers {
+  std::vector<int> twin_of;  ///< per line: the line whose points it takes, or -1
+  std::vector<char> dropped_patch;
+};
+
+Slivers find_slivers(const features::Result& fr, const Surface& s, const VertexFaces& vf, const SizeField& size) {
+  Slivers sl{std::vector<int>(fr.lines.size(), -1), std::vector<char>(fr.patch_count, 0)};
+  std::vector<int> patch_faces(fr.patch_count, 0);
+  for (int g : s.group) patch_faces[g]++;
+  std::map<std::pair<int, int>, std::vector<int>> by_ends;
+  for (size_t i = 0; i < fr.lines.size(); ++i) {
+    const auto& l = fr.lines[i];
+    if (!l.closed && l.vertices.size() >= 2 && l.vertices.front() != l.vertices.back())
+      by_ends[std::minmax(l.vertices.front(), l.vertices.back())].push_back(int(i));
+  }
+  for (const auto& [ends, ids] : by_ends) {
+    if (ids.size() != 2) continue;
+    const auto &va = fr.lines[ids[0]].vertices, &vb = fr.lines[ids[1]].vertices;
+    std::vector<Point3> pa, pb;
+    double h = std::numeric_limits<double>::max();
+    for (int v : va) { pa.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
+    for (int v : vb) { pb.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
+    if (polyline_gap(pa, pb) > kSliverGap * h) continue;
+    // The patch between them: its faces around the lines all have their vertices on the lines.
+    std::set<int> on_lines(va.begin(), va.end());
+    on_lines.insert(vb.begin(), vb.end());
+    std::map<int, int> faces_between;
+    std::set<int> seen;
+    for (int v : on_lines)
+      for (int k = vf.begin[v]; k < vf.begin[v + 1]; ++k) {
+        const int f = vf.face[k];
+        if (!seen.insert(f).second) continue;
+        const auto& t = s.faces[f];
+        if (on_lines.count(t[0]) && on_lines.count(t[1]) && on_lines.count(t[2])) faces_between[s.group[f]]++;
+      }
+    for (const auto& [g, n] : faces_between)
+      if (n == patch_faces[g] && !sl.dropped_patch[g]) {
+        sl.dropped_patch[g] = 1;
+        sl.twin_of[ids[1]] = ids[0];
+        break;
+      }
+  }
+  return sl;
+}
+
+// A thin strip (the rim of a thin plate): every face has its vertices on lines and is lower than
+// kSliverGap x size, and the patch's mean width, twice its area over its perimeter, is below
+// kSliverGap x size too (the sliver fans of a CAD cap or cylinder side are wide patches).
+std::vector<char> find_thin_patches(const features::Result& fr, const Surface& s, const SizeField& size) {
+  std::vector<char> on_line(s.points.size(), 0);
+  for (const auto& line : fr.lines) for (int v : line.vertices) on_line[v] = 1;
+  std::vector<char> thin(fr.patch_count, 1);
+  std::vector<double> area(fr.patch_count, 0.0), perimeter(fr.patch_count, 0.0);
+  std::vector<double> h_min(fr.patch_count, std::numeric_limits<double>::max());
+  for (size_t f = 0; f < s.faces.size(); ++f) {
+    const auto& t = s.faces[f];
+    const int g = s.group[f];
+    const Point3 &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
+    const double longest = std::max({(b - a).Norm(), (c - b).Norm(), (a - c).Norm()});
+    const double twice_area = ((b - a) ^ (c - a)).Norm();
+    const double h = std::min({size.at_vertex(t[0]), size.at_vertex(t[1]), size.at_vertex(t[2])});
+    if (!on_line[t[0]] || !on_line[t[1]] || !on_line[t[2]] || (longest > 0 ? twice_area / longest : 0.0) > kSliverGap * h)
+      thin[g] = 0;
+    area[g] += 0.5 * twice_area;
+    h_min[g] = std::min(h_min[g], h);
+    for (int z = 0; z < 3; ++z)
+      if (fr.ridge[f][z]) perimeter[g] += (s.points[t[(z + 1) % 3]] - s.points[t[z]]).Norm();
+  }
+  for (int g = 0; g < fr.patch_count; ++g)
+    if (thin[g] && !(perimeter[g] > 0 && 2.0 * area[g] / perimeter[g] <= kSliverGap * h_min[g])) thin[g] = 0;
+  return thin;
+}
+
 }  // namespace
+
+double polyline_gap(const std::vector<Point3>& a, const std::vector<Point3>& b) {
+  auto one_way = [](const std::vector<Point3>& from, const std::vector<Point3>& to) {
+    double worst = 0;
+    for (const Point3& p : from) worst = std::max(worst, distance_to_polyline(p, to));
+    return worst;
+  };
+  return std::max(one_way(a, b), one_way(b, a));
+}
 
 int segment_count(const std::vector<double>& lengths, const std::vector<double>& sizes, int min_segments) {
   double total = 0;
@@ -57,7 +156,19 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       end_pairs[{key.first, key.second}]++;
     }
 
-  for (const auto& line : fr.lines) {
+  const Slivers slivers = find_slivers(fr, s, vf, size);
+  ff.dropped_patch = slivers.dropped_patch;
+  ff.thin_patch = find_thin_patches(fr, s, size);
+  std::vector<std::vector<int>> line_points(fr.lines.size());
+  // Lines with a twin last, so the twin's points exist when they are reused.
+  std::vector<int> order;
+  for (int pass = 0; pass < 2; ++pass)
+    for (size_t i = 0; i < fr.lines.size(); ++i)
+      if ((slivers.twin_of[i] >= 0) == (pass == 1)) order.push_back(int(i));
+
+  for (int line_id : order) {
+    const auto& line = fr.lines[line_id];
+    const int twin = slivers.twin_of[line_id];
     std::vector<int> chain = line.vertices;
     if (line.closed) chain.push_back(chain.front());
     if (chain.size() < 2) continue;
@@ -71,7 +182,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       auto key = std::minmax(chain.front(), chain.back());
       if (end_pairs[{key.first, key.second}] > 1 || chain.front() == chain.back()) min_segments = 2;
     }
-    const int n = segment_count(lengths, sizes, min_segments);
+    const int n = twin >= 0 ? int(line_points[twin].size()) - 1 : segment_count(lengths, sizes, min_segments);
     const std::vector<double> w = normalised_lengths(lengths, sizes);
     std::vector<double> cumulative(segs + 1, 0.0);
     for (size_t j = 0; j < segs; ++j) cumulative[j + 1] = cumulative[j] + w[j];
@@ -91,8 +202,14 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       const int host = vf.begin[v] < vf.begin[v + 1] ? vf.face[vf.begin[v]] : -1;
       return out.add_point(s.points[v], host, PointKind::Line);
     };
-    pts[0] = end_point(chain.front());
-    for (int i = 1; i < n; ++i) {
+    if (twin >= 0) {
+      // Same points as the twin, in this line's direction.
+      pts = line_points[twin];
+      if (fr.lines[twin].vertices.front() != chain.front()) std::reverse(pts.begin(), pts.end());
+      ff.merged_lines++;
+    }
+    if (twin < 0) pts[0] = end_point(chain.front());
+    for (int i = 1; i < n && twin < 0; ++i) {
       size_t seg; double u;
       locate_on_line(double(i) / n, seg, u);
       const Point3 p = s.points[chain[seg]] * (1 - u) + s.points[chain[seg + 1]] * u;
@@ -100,10 +217,11 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       const int host = vf.begin[v0] < vf.begin[v0 + 1] ? vf.face[vf.begin[v0]] : -1;
       pts[i] = out.add_point(p, host, PointKind::Line);
     }
-    pts[n] = line.closed ? pts[0] : end_point(chain.back());
+    if (twin < 0) pts[n] = line.closed ? pts[0] : end_point(chain.back());
+    line_points[line_id] = pts;
 
     for (int i = 0; i < n; ++i) {
-      ff.feature_edges.push_back({pts[i], pts[i + 1]});
+      if (twin < 0) ff.feature_edges.push_back({pts[i], pts[i + 1]});
       size_t seg; double u;
       locate_on_line((i + 0.5) / n, seg, u);
       const int va = chain[seg], vb = chain[seg + 1];
@@ -112,6 +230,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       std::set<std::pair<int, int>> added;
       for (int k = vf.begin[va]; k < vf.begin[va + 1]; ++k) {
         const int f = vf.face[k];
+        if (ff.dropped_patch[s.group[f]]) continue;
         const auto& t = s.faces[f];
         for (int z = 0; z < 3; ++z) {
           const int x = t[z], y = t[(z + 1) % 3];
@@ -123,6 +242,11 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
         }
       }
     }
+  }
+  for (int g = 0; g < fr.patch_count; ++g) {
+    const auto& f = ff.patch_front[g];
+    if (f.size() == 3 && f[0][1] == f[1][0] && f[1][1] == f[2][0] && f[2][1] == f[0][0])
+      out.island_triangles[OutputMesh::triangle_key(f[0][0], f[1][0], f[2][0])] = g;
   }
   return ff;
 }

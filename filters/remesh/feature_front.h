@@ -17,13 +17,24 @@ struct FeatureFront {
   std::vector<std::vector<FrontSide>> patch_front;  ///< per patch, oriented like its input faces
   std::vector<std::array<int, 2>> feature_edges;    ///< output edges along the lines
   std::vector<int> corner_point;                    ///< output point of each input corner (same order)
+  /// Sliver patches between two nearly coincident lines: not meshed (their lines share points).
+  std::vector<char> dropped_patch;
+  /// Patches whose faces all span between line points and are lower than kSliverGap x size:
+  /// a thin strip (the rim of a thin plate) that takes one layer of faces between its lines.
+  std::vector<char> thin_patch;
+  int merged_lines = 0;  ///< lines that took the points of a nearly coincident twin
 };
+
+/// Largest distance from a vertex of one polyline to the other polyline (both ways).
+double polyline_gap(const std::vector<Point3>& a, const std::vector<Point3>& b);
 
 /// Number of segments for a polyline of `lengths` whose vertices have sizes `sizes`
 /// (one more than lengths): the size-weighted length rounded, at least `min_segments`.
 int segment_count(const std::vector<double>& lengths, const std::vector<double>& sizes, int min_segments);
 
-/// Appends corner and line points to `out` and returns the patch fronts.
+/// Appends corner and line points to `out` and returns the patch fronts. Two open lines between
+/// the same corners closer than a tenth of the local size, around a patch whose faces all lie on
+/// them (a sliver, as in noisy scans), get the same points and that patch is dropped.
 FeatureFront discretise_features(const TriMesh& mesh, const features::Result& features, const Surface& surface,
                                  const SizeField& size, OutputMesh& out);
 

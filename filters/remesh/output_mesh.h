@@ -4,7 +4,12 @@
 
 #include "common/tri_mesh.h"
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
+#include <map>
+#include <unordered_set>
+#include <utility>
 #include <vector>
 
 namespace mr::remesh {
@@ -17,6 +22,12 @@ struct OutputMesh {
   std::vector<PointKind> kind;
   std::vector<std::array<int, 3>> faces;
   std::vector<int> face_patch;   ///< input patch each face was generated in
+  /// Undirected edges (min << 32 | max) of the generated faces between two line or corner
+  /// points: the only points that patches share, so the front of one patch must not reuse such
+  /// an edge made by another (it would get four faces). Kept up by the front only.
+  std::unordered_set<std::uint64_t> shared_edges;
+  /// Patches whose whole front is three sides: their triangle (sorted points) -> the patch.
+  std::map<std::array<int, 3>, int> island_triangles;
 
   int add_point(const Point3& p, int host_face, PointKind k) {
     points.push_back(p);
@@ -24,6 +35,17 @@ struct OutputMesh {
     kind.push_back(k);
     return int(points.size()) - 1;
   }
+  static std::uint64_t edge_key(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+  }
+  static std::array<int, 3> triangle_key(int a, int b, int c) {
+    std::array<int, 3> t{a, b, c};
+    std::sort(t.begin(), t.end());
+    return t;
+  }
+  /// Is a->b an edge between two points that other patches may also use?
+  bool is_shared(int a, int b) const { return kind[a] != PointKind::Free && kind[b] != PointKind::Free; }
 };
 
 }  // namespace mr::remesh

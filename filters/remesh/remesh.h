@@ -39,6 +39,8 @@ struct Params {
 struct Result {
   int corners = 0, lines = 0, patches = 0;
   int feature_edges = 0;
+  int merged_lines = 0;         ///< lines merged with a nearly coincident twin (sliver patch dropped)
+  int thin_patches = 0;         ///< strips narrower than the elements, given one layer of faces
   int unmeshed_sides = 0;       ///< front sides that could not be closed (0 = complete)
   int unmeshed_patches = 0;     ///< patches with unmeshed sides
   int swaps = 0, smoothed = 0;  ///< post-pass moves

@@ -167,6 +167,14 @@ Projection SurfaceLocator::locate(const Point3& p, int group, const Point3& norm
         d = (closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary) - p).Norm();
       }
       if (d > radius && f != start) continue;
+      // Walk on only near the closest point so far: a face farther than its own size beyond it
+      // cannot lead closer on a surface that does not fold back within one face, and without
+      // this bound the walk would flood every face within `radius` (many when elements are
+      // much larger than the input faces) and end inconclusive.
+      const auto& t = s.faces[f];
+      const double size = std::max({(s.points[t[1]] - s.points[t[0]]).Norm(), (s.points[t[2]] - s.points[t[1]]).Norm(),
+                                    (s.points[t[0]] - s.points[t[2]]).Norm()});
+      if (best.face >= 0 && d > best.distance + 2.0 * size && f != start) continue;
       for (int z = 0; z < 3; ++z) {
         int g = s.neighbour[f][z];
         if (g >= 0 && stamp_[g] != stamp_value_ && (group < 0 || s.group[g] == group)) {

@@ -76,7 +76,7 @@ def test_remesh_against_isotropic(name):
     # Topology: manifold, oriented, same genus and boundary.
     topo = ms.get_topological_measures()
     assert topo["non_two_manifold_edges"] == 0
-    assert topo["boundary_edges"] == topo_in["boundary_edges"]
+    assert topo["number_holes"] == topo_in["number_holes"]
     assert topo["genus"] == topo_in["genus"]
     assert topo["connected_components_number"] == topo_in["connected_components_number"]
     e, oriented = edges(out)
@@ -109,8 +109,71 @@ def test_remesh_against_isotropic(name):
     assert hausdorff(ours) <= hausdorff(iso)
     lengths = np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1)
     in_range = np.mean((lengths >= 0.7 * target) & (lengths <= 1.4 * target))
-    if name.startswith("cad/"):  # rocker-arm: 79%, refined around its ~700 short creases (known, see issue notes)
+    if name.startswith("cad/"):
         assert in_range >= 0.95
+    else:  # rocker-arm: 87% (81% before the short-crease floor went from a third to half the target);
+        # its ~700 30-degree creases, mostly shorter than the target, are kept and refine around them
+        assert in_range >= 0.85
+
+
+def test_bunny_with_holes_stays_manifold_with_its_holes_and_genus():
+    """Regression: the open, noisy bunny scan used to come out non-manifold (a sliver patch between
+    two nearly coincident ridge lines and a one-triangle island patch at a fold were covered twice,
+    and small front loops stayed open). At 1% of the diagonal (about 5 s here): manifold edges and
+    vertices, one component, consistent orientation, the input's 5 boundary loops and genus 0 exactly."""
+    ms = load("organic/stanford-bunny.obj")
+    topo_in = ms.get_topological_measures()
+    target = 0.01 * ms.current_mesh().bounding_box().diagonal()
+    res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(target), ridge_angle=RIDGE_ANGLE)
+    assert res["unmeshed_sides"] == 0
+    assert res["merged_lines"] >= 1  # the sliver between twin lines is there at this size
+    topo = ms.get_topological_measures()
+    assert topo["non_two_manifold_edges"] == 0 and topo["non_two_manifold_vertices"] == 0
+    assert topo["connected_components_number"] == topo_in["connected_components_number"] == 1
+    assert topo["number_holes"] == topo_in["number_holes"] == 5
+    assert topo["genus"] == topo_in["genus"] == 0
+    _, oriented = edges(ms.current_mesh())
+    assert oriented
+
+
+def test_blade_thin_rims_are_meshed_and_keep_topology():
+    """Regression: cad/blade.off is a thin plate whose two rims are strips 0.033 wide (2.5% of the
+    1% target) between ridge lines; no front layer fits there, they were left unmeshed (410 front
+    sides) and the output fell into two components. They now get one layer of faces between their
+    lines: manifold, one component, the input's 2 boundary loops and genus 0 exactly, and the
+    worst angle no lower than MeshLab's isotropic remesher reports there (1.0 degrees)."""
+    ms = load("cad/blade.off")
+    topo_in = ms.get_topological_measures()
+    target = 0.01 * ms.current_mesh().bounding_box().diagonal()
+    res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(target), ridge_angle=RIDGE_ANGLE)
+    assert res["unmeshed_sides"] == 0
+    assert res["thin_patches"] == 2
+    topo = ms.get_topological_measures()
+    assert topo["non_two_manifold_edges"] == 0 and topo["non_two_manifold_vertices"] == 0
+    assert topo["connected_components_number"] == topo_in["connected_components_number"] == 1
+    assert topo["number_holes"] == topo_in["number_holes"] == 2
+    assert topo["genus"] == topo_in["genus"] == 0
+    _, oriented = edges(ms.current_mesh())
+    assert oriented
+    assert min_angles(ms.current_mesh()).min() >= 1.0
+
+
+def test_thin_plate_rims_get_one_layer_between_their_ridges():
+    """A 100 x 50 x 0.1 plate at target 2: the four rims (0.1 wide, a twentieth of the size) are
+    thin strips meshed by one layer of faces between their ridges; the plate stays closed, genus 0,
+    and the worst angle is that of one layer at the line spacing, atan(0.1 / 2) = 2.86 degrees."""
+    ms = pymeshlab.MeshSet()
+    ms.create_cube()  # side 2, centred
+    cube = ms.current_mesh()
+    ms.add_mesh(pymeshlab.Mesh(cube.vertex_matrix() * np.array([50.0, 25.0, 0.05]), cube.face_matrix()))
+    res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(2.0))
+    assert res["unmeshed_sides"] == 0 and res["thin_patches"] == 4 and res["corners"] == 8
+    topo = ms.get_topological_measures()
+    assert topo["non_two_manifold_edges"] == 0 and topo["non_two_manifold_vertices"] == 0
+    assert topo["boundary_edges"] == 0 and topo["genus"] == 0 and topo["connected_components_number"] == 1
+    _, oriented = edges(ms.current_mesh())
+    assert oriented
+    assert min_angles(ms.current_mesh()).min() >= np.degrees(np.arctan(0.1 / 2.0)) * 0.95
 
 
 def cad_cylinder(radius=10.0, height=200.0, segments=500):

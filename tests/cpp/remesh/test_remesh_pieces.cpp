@@ -1,5 +1,6 @@
 // Unit tests of the remesher's pieces.
 #include "remesh/advancing_front.h"
+#include "remesh/feature_front.h"
 #include "remesh/size_field.h"
 #include "remesh/surface_locator.h"
 #include "remesh/triangle_geometry.h"
@@ -148,4 +149,36 @@ TEST(RemeshPieces, FrontThatCannotCloseTerminatesAndReports) {
     EXPECT_GE(p[0], -1e-9);
     EXPECT_LE(p[0], 1 + 1e-9);
   }
+}
+
+TEST(RemeshPieces, SmallClockwiseLoopIsNotClosedByTheLastResort) {
+  // The unit square's four sides run clockwise: what lies to their left is off the surface. The
+  // front can place nothing there, and the last-resort closure of small loops must not fill the
+  // square either (that would cover a region that is not this loop's to mesh).
+  TriMesh m;
+  test::grid(m, 4);
+  const Surface s = Surface::from_mesh(m, {});
+  const SurfaceLocator loc(s, 0.1);
+  const SizeField size(s, std::vector<double>(s.points.size(), 1.0));
+  OutputMesh out;
+  const int a = out.add_point(Point3(0, 0, 0), -1, PointKind::Corner), b = out.add_point(Point3(1, 0, 0), -1, PointKind::Corner),
+            c = out.add_point(Point3(1, 1, 0), -1, PointKind::Corner), d = out.add_point(Point3(0, 1, 0), -1, PointKind::Corner);
+  const FrontResult r = advance_front(out, {{b, a}, {c, b}, {d, c}, {a, d}}, 0, loc, size);
+  EXPECT_EQ(r.faces, 0);
+  EXPECT_EQ(r.unmeshed_sides, 4);
+  // Run counter-clockwise the same loop is a hole of the patch and gets filled.
+  OutputMesh out2;
+  const int a2 = out2.add_point(Point3(0, 0, 0), -1, PointKind::Corner), b2 = out2.add_point(Point3(1, 0, 0), -1, PointKind::Corner),
+            c2 = out2.add_point(Point3(1, 1, 0), -1, PointKind::Corner), d2 = out2.add_point(Point3(0, 1, 0), -1, PointKind::Corner);
+  const FrontResult r2 = advance_front(out2, {{a2, b2}, {b2, c2}, {c2, d2}, {d2, a2}}, 0, loc, size);
+  EXPECT_EQ(r2.unmeshed_sides, 0);
+  EXPECT_GE(r2.faces, 2);
+}
+
+TEST(RemeshPieces, PolylineGapIsTheLargestDistanceBothWays) {
+  const std::vector<Point3> straight{Point3(0, 0, 0), Point3(2, 0, 0)};
+  const std::vector<Point3> bent{Point3(0, 0, 0), Point3(1, 0.01, 0), Point3(2, 0, 0)};
+  EXPECT_NEAR(polyline_gap(straight, bent), 0.01, 1e-12);
+  EXPECT_NEAR(polyline_gap(bent, straight), 0.01, 1e-12);
+  EXPECT_NEAR(polyline_gap(straight, {Point3(0, 0, 0), Point3(1, 0, 0)}), 1.0, 1e-12);
 }
