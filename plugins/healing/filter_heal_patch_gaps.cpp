@@ -85,7 +85,6 @@ struct Patches {
 /// Appends `src`'s live faces with patch label `patch` (or the patch_id
 /// attribute when `patch < 0`).
 void append_patches(const CMeshO& src, int patch, Patches& out) {
-  const int base = int(out.points.size());
   std::vector<int> index(src.vert.size(), -1);
   for (size_t v = 0; v < src.vert.size(); ++v) {
     if (src.vert[v].IsD()) continue;
@@ -93,9 +92,13 @@ void append_patches(const CMeshO& src, int patch, Patches& out) {
     const auto& p = src.vert[v].cP();
     out.points.emplace_back(p[0], p[1], p[2]);
   }
-  (void)base;
   auto attr = patch < 0 ? vcg::tri::Allocator<CMeshO>::FindPerFaceAttribute<Scalarm>(const_cast<CMeshO&>(src), "patch_id")
                         : CMeshO::PerFaceAttributeHandle<Scalarm>();
+  // An attribute of that name but another type (a point attribute, say) gives
+  // an invalid handle: reading through it would crash the host.
+  if (patch < 0 && !vcg::tri::Allocator<CMeshO>::IsValidHandle(src, attr))
+    throw MLException(QString("%1: the per-face attribute patch_id is not a scalar attribute; store one "
+                              "number per face (e.g. with Select Feature Lines and Surface Patches)").arg(kFilter));
   for (size_t f = 0; f < src.face.size(); ++f) {
     const CFaceO& face = src.face[f];
     if (face.IsD()) continue;
@@ -105,8 +108,9 @@ void append_patches(const CMeshO& src, int patch, Patches& out) {
       out.face_patch.push_back(patch);
     } else {
       const Scalarm id = attr[f];
-      if (!std::isfinite(double(id)))
-        throw MLException(QString("%1: the patch_id attribute has a NaN value").arg(kFilter));
+      if (!std::isfinite(double(id)) || std::abs(double(id)) > 1e9)
+        throw MLException(QString("%1: the patch_id attribute has a NaN, infinite or huge value (face %2)")
+                              .arg(kFilter).arg(f));
       out.face_patch.push_back(int(std::lround(double(id))));
     }
   }

@@ -251,3 +251,22 @@ def test_every_shared_mesh_heals_without_damage(name):
     assert r["boundary_edges_after"] <= r["boundary_edges_before"]
     # Healing never adds non-manifold edges.
     assert r["non_manifold_edges_after"] <= before["non_two_manifold_edges"]
+
+
+@pytest.mark.parametrize("values,match", [
+    (lambda n: np.zeros((n, 3)), "not a scalar attribute"),  # a point attribute of that name
+    (lambda n: np.full(n, 1e30), "huge value"),
+])
+def test_unusable_patch_id_attribute_is_rejected(values, match):
+    V, F, P = cases.box_of_six_faces()
+    ms = mesh_set(V, F)
+    m = ms.current_mesh()
+    if values(1).ndim == 2:
+        m.add_face_custom_point_attribute(values(m.face_number()), "patch_id")
+    else:
+        m.add_face_custom_scalar_attribute(values(m.face_number()), "patch_id")
+    before = snapshot(m)
+    with raises_on(ms, match):
+        heal(ms, vertex_tolerance=Abs(0.01), patch_source=1)
+    assert ms.mesh_number() == 1
+    assert_unchanged(before, ms.current_mesh())
