@@ -6,6 +6,7 @@
 
 #include "common/tri_mesh.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -29,6 +30,13 @@ public:
   }
 
   void insert(int item, const Point3& p) { insert(item, p, p); }
+
+  /// Stores `item` in every cell overlapped by the segment's box grown by `pad`.
+  void insert_segment(int item, const Point3& a, const Point3& b, double pad) {
+    const Point3 lo(std::min(a[0], b[0]) - pad, std::min(a[1], b[1]) - pad, std::min(a[2], b[2]) - pad);
+    const Point3 hi(std::max(a[0], b[0]) + pad, std::max(a[1], b[1]) + pad, std::max(a[2], b[2]) + pad);
+    insert(item, lo, hi);
+  }
 
   /// Calls f(item) for every item stored in a cell overlapped by the box
   /// [p - r, p + r]; an item may be reported more than once.

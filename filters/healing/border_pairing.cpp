@@ -1,6 +1,7 @@
 #include "healing/border_pairing.h"
 
 #include "common/uniform_grid.h"
+#include "healing/segment_geometry.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -22,17 +23,6 @@ bool adjacent(const SoupEdges& edges, int a, int b) {
                                return e.v0 < k.first || (e.v0 == k.first && e.v1 < k.second);
                              });
   return it != edges.end() && it->v0 == a && it->v1 == b;
-}
-
-double segment_param(const Point3& p, const Point3& a, const Point3& b) {
-  const Point3 d = b - a;
-  const double len2 = d.SquaredNorm();
-  return len2 > 0 ? ((p - a) * d) / len2 : 0.0;
-}
-
-double point_segment_distance(const Point3& p, const Point3& a, const Point3& b) {
-  const double t = std::clamp(segment_param(p, a, b), 0.0, 1.0);
-  return vcg::Distance(p, a + (b - a) * t);
 }
 
 /// Largest distance from samples of one segment to the other, both ways:
@@ -117,10 +107,7 @@ int split_t_junctions(Soup& s, const SoupEdges& edges, const std::vector<int>& b
   mean_len /= std::max<size_t>(border.size(), 1);
   UniformGrid grid(std::max(tol, mean_len));
   for (size_t i = 0; i < border.size(); ++i) {
-    const Point3 &a = s.pos[edges[border[i]].v0], &b = s.pos[edges[border[i]].v1];
-    Point3 lo(std::min(a[0], b[0]), std::min(a[1], b[1]), std::min(a[2], b[2]));
-    Point3 hi(std::max(a[0], b[0]), std::max(a[1], b[1]), std::max(a[2], b[2]));
-    grid.insert(int(i), lo - Point3(tol, tol, tol), hi + Point3(tol, tol, tol));
+    grid.insert_segment(int(i), s.pos[edges[border[i]].v0], s.pos[edges[border[i]].v1], tol);
   }
 
   std::vector<Split> splits;

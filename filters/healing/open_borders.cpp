@@ -1,22 +1,12 @@
 #include "healing/open_borders.h"
 
 #include "common/uniform_grid.h"
+#include "healing/segment_geometry.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace mr::healing {
-namespace {
-
-double point_segment_distance(const Point3& p, const Point3& a, const Point3& b) {
-  const Point3 d = b - a;
-  const double len2 = d.SquaredNorm();
-  const double t = len2 > 0 ? std::clamp(((p - a) * d) / len2, 0.0, 1.0) : 0.0;
-  return vcg::Distance(p, a + d * t);
-}
-
-}  // namespace
-
 OpenBorders find_open_borders(const Soup& s, const SoupEdges& edges, double radius) {
   OpenBorders out;
   out.side_open.assign(s.tri.size(), {false, false, false});
@@ -37,9 +27,7 @@ OpenBorders find_open_borders(const Soup& s, const SoupEdges& edges, double radi
 
   UniformGrid grid(radius);
   for (size_t i = 0; i < open.size(); ++i) {
-    const Point3 &a = s.pos[edges[open[i]].v0], &b = s.pos[edges[open[i]].v1];
-    grid.insert(int(i), Point3(std::min(a[0], b[0]), std::min(a[1], b[1]), std::min(a[2], b[2])),
-                Point3(std::max(a[0], b[0]), std::max(a[1], b[1]), std::max(a[2], b[2])));
+    grid.insert_segment(int(i), s.pos[edges[open[i]].v0], s.pos[edges[open[i]].v1], 0);
   }
   for (size_t i = 0; i < open.size(); ++i) {
     const SoupEdge& e = edges[open[i]];
