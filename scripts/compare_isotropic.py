@@ -123,10 +123,13 @@ def measure(ms, mid, src_id, diag, target, angle, in_ridges, seconds):
     }
 
 
-def run_peers(path, ms, target, angle, diag, in_ridges, src_id):
-    """Netgen and MMG when installed; results measured like ours."""
+def run_peers(path, ms, target, angle, diag, in_ridges, src_id, peers):
+    """Netgen and MMG when installed (python/requirements-peers.txt) and asked for; measured like ours.
+    Netgen's time includes reading the STL it needs; MMG's the conversion to and from its arrays."""
     out = {}
     try:
+        if "netgen" not in peers:
+            raise ImportError
         import netgen.meshing
         import netgen.stl
         with tempfile.TemporaryDirectory() as tmp:
@@ -143,18 +146,26 @@ def run_peers(path, ms, target, angle, diag, in_ridges, src_id):
             out["netgen"] = measure(ms, ms.current_mesh_id(), src_id, diag, target, angle, in_ridges, secs)
     except ImportError:
         pass
+    except Exception as e:  # a peer failing on one input is a result, not a reason to stop the table
+        print(f"  netgen failed: {e}", file=sys.stderr)
     try:
+        if "mmg" not in peers:
+            raise ImportError
         import mmgpy
-        m = ms.mesh(src_id)
+    except ImportError:
+        return out
+    m = ms.mesh(src_id)
+    try:
         t = time.perf_counter()
-        res = mmgpy.MmgMeshS(m.vertex_matrix(), m.face_matrix()).remesh(hsiz=target, hausd=0.1 * target, ar=angle)
+        mesh = mmgpy.MmgMeshS(np.ascontiguousarray(m.vertex_matrix(), dtype=float),
+                              np.ascontiguousarray(m.face_matrix(), dtype=np.int32))
+        mesh.remesh(hsiz=target, hausd=0.1 * target, ar=angle, verbose=-1)  # in place
+        v, f = np.asarray(mesh.get_vertices()), np.asarray(mesh.get_triangles())
         secs = time.perf_counter() - t
-        v, f = (res.get_vertices(), res.get_triangles()) if hasattr(res, "get_vertices") else res
-        ms.add_mesh(pymeshlab.Mesh(np.asarray(v), np.asarray(f)))
+        ms.add_mesh(pymeshlab.Mesh(v, f))
         out["mmg"] = measure(ms, ms.current_mesh_id(), src_id, diag, target, angle, in_ridges, secs)
-    except Exception as e:  # not installed, or another API version
-        if not isinstance(e, ImportError):
-            print(f"  mmgpy skipped: {e}", file=sys.stderr)
+    except Exception as e:
+        print(f"  mmg failed: {e}", file=sys.stderr)
     return out
 
 
@@ -164,6 +175,8 @@ def main(argv=None):
     ap.add_argument("--percent", type=float, default=1.0, help="target length in %% of the diagonal (default 1)")
     ap.add_argument("--ridge-angle", type=float, default=30.0)
     ap.add_argument("--out", default="out/compare_isotropic")
+    ap.add_argument("--peers", default="netgen,mmg",
+                    help="optional peers to run when installed (comma list of netgen, mmg; empty for none)")
     ap.add_argument("--benchmark-md", action="store_true", help="also write benchmarks/remesh.md")
     args = ap.parse_args(argv)
     out = pathlib.Path(args.out)
@@ -192,7 +205,8 @@ def main(argv=None):
         ms.set_current_mesh(src_id)
         src_topo = ms.get_topological_measures()
         results = {"ours": ours, "meshlab_isotropic": iso}
-        results.update(run_peers(path, ms, target, args.ridge_angle, diag, in_ridges, src_id))
+        results.update(run_peers(path, ms, target, args.ridge_angle, diag, in_ridges, src_id,
+                                  [p for p in args.peers.split(",") if p]))
         for method, r in results.items():
             hist[(name, method)] = r.pop("_min_angles")
             # Boundary loops, not boundary edges: a remeshed border has another number of edges.
