@@ -62,7 +62,7 @@ public:
   PatchMesher(OutputMesh& out, int patch, const SurfaceLocator& locator, const SizeField& size,
               const FrontParams& params)
       : out_(out), patch_(patch), loc_(locator), size_(size), params_(params),
-        grid_(std::max(size.max_size(), 1e-300)) {}
+        grid_(std::max(size.max_size(), 1e-300)), face_grid_(std::max(2 * size.max_size(), 1e-300)) {}
 
   FrontResult run(std::vector<FrontSide> front);
 
@@ -81,6 +81,8 @@ private:
   double estimated_faces() const;
   bool edge_taken(int x, int y) const;
   bool over_other_patch(int a, int b, int c) const;
+  bool lies_on_surface(const Point3& a, const Point3& b, const Point3& c) const;
+  bool covers_meshed_area(const Point3& a, const Point3& b, const Point3& c) const;
   void close_loops(size_t max_sides);
   void close_loop(std::vector<int> loop);
 
@@ -90,6 +92,7 @@ private:
   const SizeField& size_;
   FrontParams params_;
   PointGrid grid_;
+  PointGrid face_grid_;  // generated faces by centroid
   std::unordered_map<int, Local> locals_;
   std::vector<Side> sides_;
   std::unordered_map<std::uint64_t, int> front_;   // directed side -> index in sides_
@@ -99,6 +102,7 @@ private:
   FrontResult result_;
   mutable int last_reason_ = 0;  // why the last candidate was rejected (for debugging)
   Point3 current_back_{0, 0, 0};  // back normal of the side being processed
+  int current_host_ = -1;         // host face of the side being processed
 };
 
 PatchMesher::Local& PatchMesher::local(int v) {
@@ -134,6 +138,7 @@ void PatchMesher::remove_side(int s) {
 }
 
 void PatchMesher::add_triangle(int a, int b, int c) {
+  face_grid_.add(int(out_.faces.size()), (out_.points[a] + out_.points[b] + out_.points[c]) / 3.0);
   out_.faces.push_back({a, b, c});
   out_.face_patch.push_back(patch_);
   result_.faces++;
@@ -268,7 +273,52 @@ bool PatchMesher::valid_triangle(int a, int b, const Point3& q, int q_id, const 
       }
     }
   }
+  if (!lies_on_surface(pa, pb, q)) { last_reason_ = 11; return false; }
+  if (covers_meshed_area(pa, pb, q)) { last_reason_ = 12; return false; }
   return true;
+}
+
+// The front separates meshed from unmeshed only where it sees itself. Across a bend sharper
+// than its normal filters (a coarse input with tight bends, a smooth surface bending by more than
+// 60 degrees within one element) two parts of the front can pass each other, and faces are then
+// laid over faces already made: a second layer. So no new face may lie over a generated face:
+// its centroid and the midpoints of its sides must not fall strictly inside one.
+bool PatchMesher::covers_meshed_area(const Point3& a, const Point3& b, const Point3& c) const {
+  const Point3 n = unit_normal(a, b, c);
+  const double longest = std::max({(b - a).Norm(), (c - b).Norm(), (a - c).Norm()});
+  const Point3 probes[4] = {(a + b + c) / 3.0, (a + c) * 0.5, (b + c) * 0.5, (a + b) * 0.5};
+  bool covered = false;
+  for (const Point3& p : probes) {
+    face_grid_.for_each_near(p, 2 * size_.max_size(), [&](int g) {
+      if (covered) return;
+      const auto& f = out_.faces[g];
+      const Point3 &x = out_.points[f[0]], &y = out_.points[f[1]], &z = out_.points[f[2]];
+      const Point3 ng = unit_normal(x, y, z);
+      if (ng * n < 0.3) return;
+      const double offset = (p - x) * ng;
+      if (std::abs(offset) > 0.25 * longest) return;
+      std::array<double, 3> bary;
+      closest_point_on_triangle(p - ng * offset, x, y, z, bary);
+      constexpr double kInside = 0.02;  // strictly inside: a shared side or corner is not an overlap
+      covered = bary[0] > kInside && bary[1] > kInside && bary[2] > kInside;
+    });
+    if (covered) return true;
+  }
+  return false;
+}
+
+// The 2D checks run in one tangent plane and see only the front: an existing point across a
+// narrow gap (between two fingers, over a thin fold) passes them, and the face then bridges
+// empty space and starts a second layer of faces over the meshed part. A face on the surface has
+// its centroid near the patch, over a face that faces the same way: a chord of length l on a
+// bend of radius R >= l stays within l^2 / (6R) of it.
+bool PatchMesher::lies_on_surface(const Point3& a, const Point3& b, const Point3& c) const {
+  constexpr double kCentroidOffset = 0.25;  // x the longest edge
+  const double longest = std::max({(b - a).Norm(), (c - b).Norm(), (a - c).Norm()});
+  // Bounded by the element size too: a long side of a last-resort face must not span a gap.
+  const double tol = kCentroidOffset * std::min(longest, size_.max_size());
+  const Projection pr = loc_.locate_within((a + b + c) / 3.0, patch_, unit_normal(a, b, c), current_host_, tol);
+  return pr.face >= 0 && pr.distance <= tol;
 }
 
 bool PatchMesher::try_side(int s) {
@@ -283,6 +333,7 @@ bool PatchMesher::try_side(int s) {
   if (host.face < 0) return false;
   const int host_face = side_host(a, b, host, back);
   current_back_ = back;
+  current_host_ = host_face;
   const Point3 normal = loc_.surface().face_normal[host_face];
   const TangentFrame frame(mid, pb - pa, normal);
   const double h = size_.at(host.face, host.bary);
@@ -471,13 +522,29 @@ void PatchMesher::close_loop(std::vector<int> loop) {
     // Best first; the costlier check against other patches only until one passes.
     std::sort(ears.begin(), ears.end(), std::greater<>());
     size_t chosen = n;
-    for (const auto& [score, i] : ears)
-      if (!over_other_patch(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n])) { chosen = i; break; }
+    for (const auto& [score, i] : ears) {
+      const int a = loop[(i + n - 1) % n], b = loop[i], c = loop[(i + 1) % n];
+      if (over_other_patch(a, b, c)) continue;
+      // Last resort only: a loop the front left may span a gap or lie over meshed faces (the
+      // strip of a thin patch is zipped between its lines and needs neither check).
+      if (!params_.thin_patch && (!lies_on_surface(out_.points[a], out_.points[b], out_.points[c]) ||
+                                  covers_meshed_area(out_.points[a], out_.points[b], out_.points[c])))
+        continue;
+      chosen = i;
+      break;
+    }
     if (chosen == n) return;  // every ear would duplicate an edge or cover another patch: leave it open
     add_triangle(loop[(chosen + n - 1) % n], loop[chosen], loop[(chosen + 1) % n]);
     loop.erase(loop.begin() + long(chosen));
   }
-  if (!over_other_patch(loop[0], loop[1], loop[2])) add_triangle(loop[0], loop[1], loop[2]);
+  // The last three sides close with one face when none is longer than an element: such a face
+  // cannot span a gap wider than the element (the front's own faces may not be better there).
+  const Point3 &p0 = out_.points[loop[0]], &p1 = out_.points[loop[1]], &p2 = out_.points[loop[2]];
+  const double longest = std::max({(p1 - p0).Norm(), (p2 - p1).Norm(), (p0 - p2).Norm()});
+  const bool small = longest <= 1.5 * size_.max_size();
+  if (!over_other_patch(loop[0], loop[1], loop[2]) &&
+      (params_.thin_patch || small || (lies_on_surface(p0, p1, p2) && !covers_meshed_area(p0, p1, p2))))
+    add_triangle(loop[0], loop[1], loop[2]);
 }
 
 double PatchMesher::estimated_faces() const {
@@ -517,7 +584,7 @@ FrontResult PatchMesher::run(std::vector<FrontSide> front) {
       queue_.push({front_priority(len, sides_[s].failures), s});
     }
   }
-  if (!front_.empty()) close_loops(kMaxLastResortLoop);
+  if (!front_.empty()) { current_host_ = -1; close_loops(kMaxLastResortLoop); }
   result_.unmeshed_sides = int(front_.size());
   return result_;
 }

@@ -135,6 +135,32 @@ void SurfaceLocator::faces_near(const Point3& p, double radius, std::vector<int>
 
 Projection SurfaceLocator::locate(const Point3& p, int group, const Point3& normal, int start, double radius,
                                   SearchStep* step) const {
+  Projection best = locate_within(p, group, normal, start, radius, step);
+  if (best.face >= 0) return best;
+  const Surface& s = surface_;
+  best.distance = std::numeric_limits<double>::max();
+  auto consider = [&](int f) {
+    std::array<double, 3> bary;
+    const auto& t = s.faces[f];
+    Point3 q = closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary);
+    const double d = (q - p).Norm();
+    const bool better = d < best.distance - 1e-12 * (1 + d) ||
+                        (d <= best.distance + 1e-12 * (1 + d) && best.face >= 0 && normal.SquaredNorm() > 0 &&
+                         s.face_normal[f] * normal > s.face_normal[best.face] * normal);
+    if (better) { best.face = f; best.point = q; best.bary = bary; best.distance = d; }
+  };
+  // 3. Brute force over the allowed faces; without an agreeing normal, any face of the group.
+  for (int f = 0; f < int(s.faces.size()); ++f)
+    if (accept(f, group, normal)) consider(f);
+  if (best.face < 0)
+    for (int f = 0; f < int(s.faces.size()); ++f)
+      if (group < 0 || s.group[f] == group) consider(f);
+  if (step) *step = best.face >= 0 ? SearchStep::BruteForce : SearchStep::None;
+  return best;
+}
+
+Projection SurfaceLocator::locate_within(const Point3& p, int group, const Point3& normal, int start, double radius,
+                                         SearchStep* step) const {
   const Surface& s = surface_;
   Projection best;
   best.distance = std::numeric_limits<double>::max();
@@ -198,14 +224,8 @@ Projection SurfaceLocator::locate(const Point3& p, int group, const Point3& norm
     if (step) *step = SearchStep::Grid;
     return best;
   }
-  // 3. Brute force over the allowed faces; without an agreeing normal, any face of the group.
-  for (int f = 0; f < int(s.faces.size()); ++f)
-    if (accept(f, group, normal)) consider(f);
-  if (best.face < 0)
-    for (int f = 0; f < int(s.faces.size()); ++f)
-      if (group < 0 || s.group[f] == group) consider(f);
-  if (step) *step = best.face >= 0 ? SearchStep::BruteForce : SearchStep::None;
-  return best;
+  if (step) *step = SearchStep::None;
+  return Projection{};
 }
 
 }  // namespace mr::remesh

@@ -51,6 +51,10 @@ public:
   /// `radius` bounds the walk and grid search; brute force runs only if both find nothing.
   Projection locate(const Point3& p, int group, const Point3& normal, int start, double radius,
                     SearchStep* step = nullptr) const;
+  /// Like locate, without the brute force: face -1 when no allowed face lies within `radius`
+  /// (a cheap "is p on the surface" test).
+  Projection locate_within(const Point3& p, int group, const Point3& normal, int start, double radius,
+                           SearchStep* step = nullptr) const;
 
   /// Faces whose grid cells lie within `radius` of p (may repeat none; order is deterministic).
   void faces_near(const Point3& p, double radius, std::vector<int>& out) const;
