@@ -14,11 +14,24 @@ namespace {
 std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
 std::uint64_t undirected(int a, int b) { return directed(std::min(a, b), std::max(a, b)); }
 
+// Valence swaps may lower a face pair's smallest angle down to this (radians), never below the
+// mesh's worst angle.
+constexpr double kValenceFloor = 35.0 * 3.14159265358979323846 / 180.0;
+
 double face_min_angle(const OutputMesh& out, const std::array<int, 3>& f) {
   return min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]);
 }
 
-int swap_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed) {
+// What a swap of edge x-y (faces x,y,c and y,x,d) to c-d would do.
+struct SwapCandidate {
+  int x, y, c, d;
+  double min_angle_before, min_angle_after;
+};
+
+// Swaps edges of nearly flat face pairs of one patch, never a fixed (feature) edge, whenever
+// `wanted` says so; each swap keeps the two new faces agreeing with the surface normal.
+template <class Wanted>
+int swap_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, Wanted&& wanted) {
   std::unordered_map<std::uint64_t, int> side_face;  // directed side -> face
   side_face.reserve(out.faces.size() * 3);
   for (size_t f = 0; f < out.faces.size(); ++f)
@@ -47,9 +60,9 @@ int swap_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed) {
       const Point3 na = unit_normal(out.points[x], out.points[d], out.points[c]);
       const Point3 nb = unit_normal(out.points[d], out.points[y], out.points[c]);
       if (na * n < 0.9 || nb * n < 0.9) continue;
-      const double before = std::min(face_min_angle(out, F), face_min_angle(out, G));
-      const double after = std::min(face_min_angle(out, A), face_min_angle(out, B));
-      if (after <= before + 1e-6) continue;
+      const SwapCandidate cand{x, y, c, d, std::min(face_min_angle(out, F), face_min_angle(out, G)),
+                               std::min(face_min_angle(out, A), face_min_angle(out, B))};
+      if (!wanted(cand)) continue;
       for (int k = 0; k < 3; ++k) {
         side_face.erase(directed(F[k], F[(k + 1) % 3]));
         side_face.erase(directed(G[k], G[(k + 1) % 3]));
@@ -64,6 +77,41 @@ int swap_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed) {
     }
   }
   return swaps;
+}
+
+int swap_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed) {
+  return swap_edges(out, fixed, [](const SwapCandidate& s) { return s.min_angle_after > s.min_angle_before + 1e-6; });
+}
+
+// Valence: a free or line point wants 6 neighbours inside the surface and 4 on an open border
+// (corners have no ideal and do not count). A swap that brings the four points of the pair
+// closer to it is taken when its faces stay above min(their old minimum angle, `floor`): with a
+// floor no lower than the mesh's worst angle the minimum angle never drops, and the smoothing
+// that follows evens the angles out around the new valences (Netgen's and MMG's order too).
+int valence_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, double floor) {
+  std::vector<int> valence(out.points.size(), 0), ideal(out.points.size(), 6);
+  std::unordered_map<std::uint64_t, int> edge_faces;
+  edge_faces.reserve(out.faces.size() * 2);
+  for (const auto& f : out.faces)
+    for (int z = 0; z < 3; ++z) edge_faces[undirected(f[z], f[(z + 1) % 3])]++;
+  for (const auto& [key, count] : edge_faces) {
+    const int a = int(key >> 32), b = int(key & 0xffffffffu);
+    valence[a]++;
+    valence[b]++;
+    if (count == 1) ideal[a] = ideal[b] = 4;
+  }
+  auto deviation = [&](int v, int change) {
+    if (out.kind[v] == PointKind::Corner) return 0;
+    const int e = valence[v] + change - ideal[v];
+    return e * e;
+  };
+  return swap_edges(out, fixed, [&](const SwapCandidate& s) {
+    const int before = deviation(s.x, 0) + deviation(s.y, 0) + deviation(s.c, 0) + deviation(s.d, 0);
+    const int after = deviation(s.x, -1) + deviation(s.y, -1) + deviation(s.c, 1) + deviation(s.d, 1);
+    if (after >= before || s.min_angle_after < std::min(s.min_angle_before, floor)) return false;
+    valence[s.x]--, valence[s.y]--, valence[s.c]++, valence[s.d]++;
+    return true;
+  });
 }
 
 int smooth_pass(OutputMesh& out, const SurfaceLocator& locator) {
@@ -114,8 +162,11 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
   std::unordered_set<std::uint64_t> fixed;
   for (const auto& e : feature_edges) fixed.insert(undirected(e[0], e[1]));
   ImprovementResult r;
+  double worst = kValenceFloor;
+  for (const auto& f : out.faces) worst = std::min(worst, face_min_angle(out, f));
+  const double floor = std::max(worst, kValenceFloor);
   for (int it = 0; it < iterations; ++it) {
-    const int swaps = swap_pass(out, fixed);
+    const int swaps = swap_pass(out, fixed) + valence_pass(out, fixed, floor);
     const int moves = smooth_pass(out, locator);
     r.swaps += swaps;
     r.moves += moves;

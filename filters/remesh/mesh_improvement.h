@@ -1,7 +1,8 @@
 // A short post-pass that only improves (Löhner 1996, section 3.6): edge swaps and
-// smoothing of free points projected back onto the input. Every move raises the
-// smallest angle of the faces it touches, so the minimum angle never drops; feature
-// edges are never swapped and line and corner points never move.
+// smoothing of free points projected back onto the input. Angle swaps and smoothing raise
+// the smallest angle of the faces they touch; valence swaps (towards 6 neighbours) keep
+// their faces above 35 degrees or their old smallest angle, so the mesh's minimum angle
+// never drops. Feature edges are never swapped and line and corner points never move.
 #pragma once
 
 #include "remesh/output_mesh.h"
