@@ -35,6 +35,13 @@ void check_params(const Params& p, double diagonal) {
   if (!(p.gradation >= 1.0)) throw InvalidInput("gradation must be >= 1, got " + std::to_string(p.gradation));
   if (p.improvement_iterations < 0) throw InvalidInput("improvement_iterations must be >= 0");
   if (p.source_points.size() != p.source_sizes.size()) throw InvalidInput("one size per source point is needed");
+  for (size_t i = 0; i < p.source_points.size(); ++i)
+    if (!(p.source_sizes[i] > 0) || !std::isfinite(p.source_sizes[i]) || !std::isfinite(p.source_points[i][0]) ||
+        !std::isfinite(p.source_points[i][1]) || !std::isfinite(p.source_points[i][2]))
+      throw InvalidInput("size source " + std::to_string(i) + " needs a finite position and a size > 0");
+  for (const auto& seg : p.source_segments)
+    if (seg[0] < 0 || seg[1] < 0 || size_t(seg[0]) >= p.source_points.size() || size_t(seg[1]) >= p.source_points.size())
+      throw InvalidInput("a line source refers to a source point that does not exist");
 }
 
 void progress(const Params& p, int percent, const char* what) {
@@ -118,6 +125,7 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   sp.gradation = params.gradation;
   sp.source_points = params.source_points;
   sp.source_sizes = params.source_sizes;
+  sp.source_segments = params.source_segments;
   sp.vertex_cap = small_feature_caps(input, fr, params.target_length);
   const SizeField size(surface, sp);
   const SurfaceLocator locator(surface, params.target_length);

@@ -7,6 +7,7 @@
 
 #include "common/tri_mesh.h"
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -32,6 +33,7 @@ struct Params {
   bool use_selected_edges_as_ridges = false;  ///< also keep the input's face-edge selection (FaceEdgeS) as ridges
   std::vector<Point3> source_points;  ///< point sources of size
   std::vector<double> source_sizes;
+  std::vector<std::array<int, 2>> source_segments;  ///< line sources: pairs of source points
   /// Progress in percent with a message; may be empty.
   std::function<void(int, const char*)> progress;
 };

@@ -31,10 +31,22 @@ SizeField::SizeField(const Surface& surface, const SizeParams& params)
         vertex_size_[b] = std::min(vertex_size_[b], hh);
       }
   }
+  const double slope = std::max(params.gradation - 1.0, 0.0);
   for (size_t i = 0; i < params.source_points.size() && i < params.source_sizes.size(); ++i) {
-    const double slope = std::max(params.gradation - 1.0, 0.0);
     for (size_t v = 0; v < s.points.size(); ++v) {
       const double h = params.source_sizes[i] + slope * (s.points[v] - params.source_points[i]).Norm();
+      if (h > 0) vertex_size_[v] = std::min(vertex_size_[v], h);
+    }
+  }
+  for (const auto& seg : params.source_segments) {
+    const Point3 &a = params.source_points[seg[0]], &b = params.source_points[seg[1]];
+    const double ha = params.source_sizes[seg[0]], hb = params.source_sizes[seg[1]];
+    const Point3 d = b - a;
+    const double len2 = d.SquaredNorm();
+    for (size_t v = 0; v < s.points.size(); ++v) {
+      // Closest point of the segment; its size interpolated between the ends, then graded.
+      const double t = len2 > 0 ? std::clamp(((s.points[v] - a) * d) / len2, 0.0, 1.0) : 0.0;
+      const double h = (1 - t) * ha + t * hb + slope * (s.points[v] - (a + d * t)).Norm();
       if (h > 0) vertex_size_[v] = std::min(vertex_size_[v], h);
     }
   }

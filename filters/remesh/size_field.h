@@ -4,6 +4,7 @@
 
 #include "remesh/surface_locator.h"
 
+#include <array>
 #include <vector>
 
 namespace mr::remesh {
@@ -17,6 +18,8 @@ struct SizeParams {
   /// Point sources: positions and sizes, limiting h around them (after gradation).
   std::vector<Point3> source_points;
   std::vector<double> source_sizes;
+  /// Line sources: segments between two source points, the size interpolated along them.
+  std::vector<std::array<int, 2>> source_segments;
   /// Optional per-vertex upper bounds (e.g. small features), applied before the gradation.
   std::vector<double> vertex_cap;
 };

@@ -73,7 +73,8 @@ RichParameterList Remeshing::initParameterList(const QAction*, const MeshDocumen
                          "Limit the size near the vertices of another layer, each vertex carrying the wanted size "
                          "in its vertex quality."));
   list.addParam(RichMesh("size_source", m != nullptr ? m->id() : 0, &md, "Size source layer",
-                         "Layer whose vertices are point sources; vertex quality holds the size (absolute)."));
+                         "Layer whose vertices are point sources and whose edges (an edge mesh) are line sources; vertex "
+                         "quality holds the size (absolute), interpolated along the edges."));
   return list;
 }
 
@@ -101,12 +102,21 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
     if (source == nullptr) throw MLException(QString(name) + ": the size source layer does not exist");
     if (!source->hasDataMask(MeshModel::MM_VERTQUALITY))
       throw MLException(QString(name) + ": the size source layer has no vertex quality; store the wanted size there");
-    for (const auto& v : source->cm.vert) {
+    std::vector<int> index(source->cm.vert.size(), -1);
+    for (size_t i = 0; i < source->cm.vert.size(); ++i) {
+      const auto& v = source->cm.vert[i];
       if (v.IsD()) continue;
       if (!(v.cQ() > 0) || !std::isfinite(double(v.cQ())))
         throw MLException(QString(name) + ": every size source vertex needs a quality (size) > 0");
+      index[i] = int(p.source_points.size());
       p.source_points.push_back(mr::Point3(v.cP()[0], v.cP()[1], v.cP()[2]));
       p.source_sizes.push_back(double(v.cQ()));
+    }
+    // Edges of the layer (an edge mesh, e.g. the feature filter's lines layer) are line sources.
+    for (const auto& e : source->cm.edge) {
+      if (e.IsD()) continue;
+      const int a = index[vcg::tri::Index(source->cm, e.cV(0))], b = index[vcg::tri::Index(source->cm, e.cV(1))];
+      if (a >= 0 && b >= 0 && a != b) p.source_segments.push_back({a, b});
     }
   }
   if (cb) p.progress = [cb](int percent, const char* what) { cb(percent, what); };

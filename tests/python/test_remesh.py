@@ -157,6 +157,39 @@ def test_bends_that_are_not_ridges_are_covered_once(ridge_angle):
     assert h <= 0.01 * diag
 
 
+@pytest.mark.parametrize("line_source", [False, True])
+def test_size_source_layer_points_and_lines(line_source):
+    """A source layer's vertices are point sources and its edges line sources, the size (vertex
+    quality) interpolated along each edge. The segment from (-1,0,1) to (1,0,1) touches the unit
+    sphere at its top only: as two point sources its ends (0.41 from the sphere) barely matter
+    (graded size 0.02 + 0.3 x 0.41 = 0.14 against the target 0.15), as a line source it refines the
+    top to its interpolated size (0.03 at x = 0). Measured: 0.033-0.035 near the top with the
+    edge, 0.17 without."""
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(subdiv=5)
+    ends = np.array([[-1.0, 0, 1.0], [1.0, 0, 1.0]])
+    extra = dict(edge_matrix=np.array([[0, 1]], dtype=np.int32)) if line_source else {}
+    ms.add_mesh(pymeshlab.Mesh(ends, v_scalar_array=np.array([0.02, 0.04]), **extra), "source")
+    ms.set_current_mesh(0)
+    res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(0.15), use_size_source=True,
+                                            size_source=1, gradation=1.3)
+    assert res["unmeshed_sides"] == 0
+    m = ms.current_mesh()
+    v, f = m.vertex_matrix(), m.face_matrix()
+    e, _ = edges(m)
+    mid, lengths = v[e].mean(1), np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1)
+    for x in (-0.1, 0.0, 0.1):
+        near = np.linalg.norm(mid - [x, 0, 1], axis=1) < 0.08
+        assert near.any()
+        wanted = 0.02 + 0.02 * (x + 1) / 2
+        if line_source:
+            assert 0.7 * wanted <= lengths[near].mean() <= 1.4 * wanted
+        else:
+            assert lengths[near].mean() >= 0.1
+    far = mid[:, 2] < -0.5
+    assert 0.7 * 0.15 <= lengths[far].mean() <= 1.4 * 0.15
+
+
 def test_blade_thin_rims_are_meshed_and_keep_topology():
     """Regression: cad/blade.off is a thin plate whose two rims are strips 0.033 wide (2.5% of the
     1% target) between ridge lines; no front layer fits there, they were left unmeshed (410 front

@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 using namespace mr;
 using namespace mr::remesh;
 using P2 = vcg::Point2d;
@@ -87,6 +90,35 @@ TEST(RemeshPieces, SizeFieldUniformCurvatureAndGradation) {
   EXPECT_NEAR(graded.at_vertex(0), 0.05, 1e-12);
   for (size_t v = 0; v < s.points.size(); ++v)
     EXPECT_LE(graded.at_vertex(int(v)), 0.05 + 0.2 * (s.points[v] - s.points[0]).Norm() + 1e-12);
+}
+
+TEST(RemeshPieces, SizeFieldLineSourceInterpolatesAlongTheSegmentAndGrades) {
+  TriMesh m;
+  test::sphere(m, 3);
+  const Surface s = Surface::from_mesh(m, {});
+  SizeParams sp;
+  sp.target_length = 0.5;
+  sp.gradation = 1.2;
+  // A diameter between two antipodal vertices (0 and 3 of the icosahedron), 0.02 at one end, 0.1 at the other.
+  const Point3 a = s.points[0], b = s.points[3];
+  ASSERT_NEAR((a + b).Norm(), 0.0, 1e-12);
+  sp.source_points = {a, b};
+  sp.source_sizes = {0.02, 0.1};
+  sp.source_segments = {{0, 1}};
+  const SizeField field(s, sp);
+  EXPECT_NEAR(field.at_vertex(0), 0.02, 1e-12);
+  EXPECT_NEAR(field.at_vertex(3), 0.1, 1e-12);
+  int below_target = 0;
+  for (size_t v = 0; v < s.points.size(); ++v) {
+    const Point3& p = s.points[v];
+    const double t = std::clamp(((p - a) * (b - a)) / (b - a).SquaredNorm(), 0.0, 1.0);
+    const double off = (p - (a + (b - a) * t)).Norm();
+    // Never above the source's law (interpolated along the segment, graded away from it).
+    EXPECT_LE(field.at_vertex(int(v)), (1 - t) * 0.02 + t * 0.1 + 0.2 * off + 1e-12);
+    below_target += field.at_vertex(int(v)) < 0.5 ? 1 : 0;
+  }
+  // Every sphere point is within 1 of the diameter, so the line source reaches all of them.
+  EXPECT_EQ(below_target, int(s.points.size()));
 }
 
 TEST(RemeshPieces, FrontPriorityTakesSmallestFirstAndPenalisesFailures) {
