@@ -28,11 +28,11 @@ def large_input() -> pymeshlab.MeshSet:
 
 
 def timed(run) -> tuple:
-    """Seconds and output faces of one run on a fresh copy of the input."""
+    """Seconds, output faces and the filter's dictionary of one run on a fresh copy of the input."""
     ms = large_input()
     t = time.perf_counter()
-    run(ms)
-    return time.perf_counter() - t, ms.current_mesh().face_number()
+    result = run(ms)
+    return time.perf_counter() - t, ms.current_mesh().face_number(), result
 
 
 def main():
@@ -46,8 +46,8 @@ def main():
     input_faces = probe.current_mesh().face_number()
     diag = probe.current_mesh().bounding_box().diagonal()
     rows = ["| target (% diag) | input triangles | ours: faces | ours (s) | ours (tri/s) | MeshLab: faces | "
-            "MeshLab (s) | MeshLab (tri/s) | throughput ratio (ours / MeshLab) |",
-            "|---|---|---|---|---|---|---|---|---|"]
+            "MeshLab (s) | MeshLab (tri/s) | throughput ratio (ours / MeshLab) | ours: open sides | ours: min angle |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
     for percent in (float(p) for p in args.percents.split(",")):
         length = pymeshlab.PureValue(percent / 100 * diag)
         ours = min((timed(lambda ms: ms.meshing_advancing_front_remesh(target_length=length,
@@ -58,7 +58,8 @@ def main():
                    for _ in range(args.repeats)), key=lambda r: r[0])
         rate_ours, rate_iso = ours[1] / ours[0], iso[1] / iso[0]
         rows.append(f"| {percent:g} | {input_faces} | {ours[1]} | {ours[0]:.2f} | {rate_ours:.0f} | {iso[1]} | "
-                    f"{iso[0]:.2f} | {rate_iso:.0f} | {rate_ours / rate_iso:.2f} |")
+                    f"{iso[0]:.2f} | {rate_iso:.0f} | {rate_ours / rate_iso:.2f} | {ours[2]['unmeshed_sides']} | "
+                    f"{ours[2]['min_angle']:.1f} |")
         print(rows[-1], flush=True)
     text = "\n".join([
         "## Remeshing throughput on a large input (`scripts/bench_remesh_speed.py`)", "",
