@@ -15,6 +15,7 @@ import json
 import os
 import pathlib
 import platform
+import subprocess
 import sys
 import tempfile
 import time
@@ -123,53 +124,97 @@ def measure(ms, mid, src_id, diag, target, angle, in_ridges, seconds):
     }
 
 
-def run_peers(path, ms, target, angle, diag, in_ridges, src_id, peers):
-    """Netgen and MMG when installed (python/requirements-peers.txt) and asked for; measured like ours.
-    Netgen's time includes reading the STL it needs; MMG's the conversion to and from its arrays."""
-    out = {}
-    try:
-        if "netgen" not in peers:
-            raise ImportError
+def peer_worker(peer, src, dst, target, angle):
+    """Runs one peer on the arrays in `src` (npz: v, f) and writes its mesh and time to `dst`.
+    Called in a child process: a peer that crashes (Netgen's STL mesher does on cad/blade.off)
+    takes only the child down."""
+    data = np.load(src)
+    v, f = data["v"], data["f"]
+    if peer == "netgen":
         import netgen.meshing
         import netgen.stl
         with tempfile.TemporaryDirectory() as tmp:
             stl = os.path.join(tmp, "in.stl")
-            ms.set_current_mesh(src_id)
+            ms = pymeshlab.MeshSet()
+            ms.add_mesh(pymeshlab.Mesh(v, f))
             ms.save_current_mesh(stl)
             t = time.perf_counter()
             geo = netgen.stl.STLGeometry(stl)
             mesh = geo.GenerateMesh(maxh=target, yangle=angle, perfstepsend=netgen.meshing.MeshingStep.MESHSURFACE)
             secs = time.perf_counter() - t
-            pts = np.array([p.p for p in mesh.Points()])
-            tris = np.array([[v.nr - 1 for v in el.vertices] for el in mesh.Elements2D()])
-            ms.add_mesh(pymeshlab.Mesh(pts, tris))
-            out["netgen"] = measure(ms, ms.current_mesh_id(), src_id, diag, target, angle, in_ridges, secs)
-    except ImportError:
-        pass
-    except Exception as e:  # a peer failing on one input is a result, not a reason to stop the table
-        print(f"  netgen failed: {e}", file=sys.stderr)
-    try:
-        if "mmg" not in peers:
-            raise ImportError
+        pts = np.array([p.p for p in mesh.Points()])
+        tris = np.array([[q.nr - 1 for q in el.vertices] for el in mesh.Elements2D()])
+    elif peer == "mmg":
         import mmgpy
-    except ImportError:
-        return out
-    m = ms.mesh(src_id)
-    try:
         t = time.perf_counter()
-        mesh = mmgpy.MmgMeshS(np.ascontiguousarray(m.vertex_matrix(), dtype=float),
-                              np.ascontiguousarray(m.face_matrix(), dtype=np.int32))
+        mesh = mmgpy.MmgMeshS(np.ascontiguousarray(v, dtype=float), np.ascontiguousarray(f, dtype=np.int32))
         mesh.remesh(hsiz=target, hausd=0.1 * target, ar=angle, verbose=-1)  # in place
-        v, f = np.asarray(mesh.get_vertices()), np.asarray(mesh.get_triangles())
+        pts, tris = np.asarray(mesh.get_vertices()), np.asarray(mesh.get_triangles())
         secs = time.perf_counter() - t
-        ms.add_mesh(pymeshlab.Mesh(v, f))
-        out["mmg"] = measure(ms, ms.current_mesh_id(), src_id, diag, target, angle, in_ridges, secs)
-    except Exception as e:
-        print(f"  mmg failed: {e}", file=sys.stderr)
+    else:
+        raise ValueError(f"unknown peer {peer}")
+    np.savez(dst, v=pts, f=tris, seconds=secs)
+
+
+def peer_available(peer):
+    module = {"netgen": "netgen.stl", "mmg": "mmgpy"}[peer]
+    try:
+        __import__(module)
+        return True
+    except ImportError:
+        return False
+
+
+def run_peers(ms, target, angle, diag, in_ridges, src_id, ref_id, peers):
+    """Netgen and MMG when installed (python/requirements-peers.txt) and asked for, each in a child
+    process; measured like ours. Netgen's time includes reading the STL it needs, MMG's the
+    conversion to and from its arrays. A peer that fails or crashes is reported and left out."""
+    out = {}
+    m = ms.mesh(src_id)
+    with tempfile.TemporaryDirectory() as tmp:
+        src = os.path.join(tmp, "in.npz")
+        np.savez(src, v=m.vertex_matrix(), f=m.face_matrix())
+        for peer in peers:
+            if not peer_available(peer):
+                continue
+            dst = os.path.join(tmp, f"{peer}.npz")
+            run = subprocess.run([sys.executable, __file__, "--peer-worker", peer, src, dst, repr(target), repr(angle)],
+                                 capture_output=True, text=True, timeout=3600)
+            if run.returncode != 0 or not os.path.exists(dst):
+                why = f"signal {-run.returncode}" if run.returncode < 0 else (run.stderr.strip().splitlines() or ["?"])[-1]
+                print(f"  {peer} failed: {why}", file=sys.stderr)
+                continue
+            res = np.load(dst)
+            ms.add_mesh(pymeshlab.Mesh(res["v"], res["f"]))
+            out[peer] = measure(ms, ms.current_mesh_id(), ref_id, diag, target, angle, in_ridges, float(res["seconds"]))
     return out
 
 
+def goals_table(rows):
+    """Issue #3's goal per mesh: Netgen's element quality (mean per-triangle minimum angle >= 57,
+    >= 95% valence-6 vertices) at MeshLab's speed or better, with the time ratios of this run."""
+    by = {(r["mesh"], r["method"]): r for r in rows}
+    lines = ["", "Goal (issue #3): mean minimum angle >= 57 and valence-6 share >= 0.95 (Netgen's quality), "
+             "time <= MeshLab's.", "",
+             "| mesh | ours / MeshLab time | ours / Netgen time | ours mean min angle | Netgen mean min angle | "
+             "ours valence6 | Netgen valence6 | goal met |", "|---|---|---|---|---|---|---|---|"]
+    for mesh in dict.fromkeys(r["mesh"] for r in rows):
+        ours, iso, ng = by.get((mesh, "ours")), by.get((mesh, "meshlab_isotropic")), by.get((mesh, "netgen"))
+        if not ours or not iso:
+            continue
+        peer = (lambda key, f: f.format(ng[key]) if ng else "—")  # noqa: E731  (Netgen may be absent or crash)
+        met = ours["mean_min_angle"] >= 57 and ours["valence6"] >= 0.95 and ours["time_s"] <= iso["time_s"]
+        ratio_ng = f"{ours['time_s'] / ng['time_s']:.2f}" if ng else "—"
+        lines.append(f"| {mesh} | {ours['time_s'] / iso['time_s']:.2f} | {ratio_ng} | {ours['mean_min_angle']:.2f} | "
+                     f"{peer('mean_min_angle', '{:.2f}')} | {ours['valence6']:.3f} | {peer('valence6', '{:.3f}')} | {met} |")
+    return "\n".join(lines) + "\n"
+
+
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["--peer-worker"]:
+        peer_worker(argv[1], argv[2], argv[3], float(argv[4]), float(argv[5]))
+        return 0
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--meshes", nargs="*", default=MESHES, help="paths relative to ../shared/data")
     ap.add_argument("--percent", type=float, default=1.0, help="target length in %% of the diagonal (default 1)")
@@ -205,8 +250,8 @@ def main(argv=None):
         ms.set_current_mesh(src_id)
         src_topo = ms.get_topological_measures()
         results = {"ours": ours, "meshlab_isotropic": iso}
-        results.update(run_peers(path, ms, target, args.ridge_angle, diag, in_ridges, src_id,
-                                  [p for p in args.peers.split(",") if p]))
+        results.update(run_peers(ms, target, args.ridge_angle, diag, in_ridges, src_id, src_id,
+                                 [p for p in args.peers.split(",") if p]))
         for method, r in results.items():
             hist[(name, method)] = r.pop("_min_angles")
             # Boundary loops, not boundary edges: a remeshed border has another number of edges.
@@ -224,7 +269,7 @@ def main(argv=None):
     fmt = lambda x: f"{x:.4g}" if isinstance(x, float) else str(x)  # noqa: E731
     table = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     table += ["| " + " | ".join(fmt(r[c]) for c in cols) + " |" for r in rows]
-    md = "\n".join(table) + "\n"
+    md = "\n".join(table) + "\n" + goals_table(rows)
     (out / "remesh_compare.md").write_text(md)
 
     import matplotlib
