@@ -14,27 +14,54 @@ int sign_of(const mpq_class& v) { return sgn(v); }
 
 }  // namespace
 
+QPoint::QPoint(const QPoint& o) : d(o.d), exact_double(o.exact_double), canonical_(o.canonical_) {
+  if (o.q_) q_ = std::make_unique<std::array<mpq_class, 3>>(*o.q_);
+}
+
+QPoint& QPoint::operator=(const QPoint& o) {
+  if (this != &o) *this = QPoint(o);
+  return *this;
+}
+
+const mpq_class& QPoint::q(int k) const {
+  if (!q_) q_ = std::make_unique<std::array<mpq_class, 3>>(std::array<mpq_class, 3>{mpq_class(d[0]), mpq_class(d[1]), mpq_class(d[2])});
+  if (!canonical_) {
+    for (auto& c : *q_) c.canonicalize();
+    canonical_ = true;
+  }
+  return (*q_)[k];
+}
+
 QPoint make_point(const std::array<double, 3>& p) {
   QPoint r;
-  for (int k = 0; k < 3; ++k) {
-    r.q[k] = p[k];  // exact: every double is a dyadic rational
-    r.d[k] = p[k];
-  }
+  r.d = p;  // exact: every double is a dyadic rational
+  r.exact_double = true;
   return r;
 }
 
 QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z) {
+  mpq_class a(x), b(y), c(z);
+  a.canonicalize();
+  b.canonicalize();
+  c.canonicalize();
+  return make_point_canonical(std::move(a), std::move(b), std::move(c));
+}
+
+QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z) {
   QPoint r;
-  r.q = {x, y, z};
-  for (int k = 0; k < 3; ++k) {
-    r.q[k].canonicalize();
-    r.d[k] = r.q[k].get_d();
-  }
+  r.q_ = std::make_unique<std::array<mpq_class, 3>>();
+  (*r.q_)[0] = std::move(x);
+  (*r.q_)[1] = std::move(y);
+  (*r.q_)[2] = std::move(z);
+  for (int k = 0; k < 3; ++k) r.d[k] = (*r.q_)[k].get_d();
   return r;
 }
 
 bool same_point(const QPoint& a, const QPoint& b) {
-  return a.q[0] == b.q[0] && a.q[1] == b.q[1] && a.q[2] == b.q[2];
+  // Truncation is monotone: different doubles, different rationals.
+  if (a.d != b.d) return false;
+  if (a.exact_double && b.exact_double) return true;
+  return a.q(0) == b.q(0) && a.q(1) == b.q(1) && a.q(2) == b.q(2);
 }
 
 mpq_class orient3d_exact(const double* a, const double* b, const double* c, const double* d) {
@@ -53,6 +80,10 @@ namespace {
 
 /// Exact sign of det[b-a, c-a, d-a] with integers (all inputs scaled to one power of two).
 int orient3d_integer_sign(const double* a, const double* b, const double* c, const double* d);
+/// The same for det[b-a, c-a] on axes (i, j).
+int orient2d_integer_sign(const double* a, const double* b, const double* c, int i, int j);
+/// The same for perpendicular_dot_sign.
+int perpendicular_dot_integer_sign(const double* u, const double* w, const double* x, const double* y);
 
 }  // namespace
 
@@ -76,6 +107,8 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
 }
 
 int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d) {
+  if (a.exact_double && b.exact_double && c.exact_double && d.exact_double)
+    return orient3d(a.d.data(), b.d.data(), c.d.data(), d.d.data());
   double m[3][3];
   double mag = 0;
   for (int k = 0; k < 3; ++k) {
@@ -94,9 +127,9 @@ int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d)
   if (det < -bound) return -1;
   mpq_class q[3][3];
   for (int k = 0; k < 3; ++k) {
-    q[0][k] = b.q[k] - a.q[k];
-    q[1][k] = c.q[k] - a.q[k];
-    q[2][k] = d.q[k] - a.q[k];
+    q[0][k] = b.q(k) - a.q(k);
+    q[1][k] = c.q(k) - a.q(k);
+    q[2][k] = d.q(k) - a.q(k);
   }
   const mpq_class e = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
                       q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
@@ -105,11 +138,34 @@ int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d)
 
 int perpendicular_dot_sign(const QPoint& u, const QPoint& w, const QPoint& x, const QPoint& y) {
   // (x-u).(y-u) |d|^2 - ((x-u).d)((y-u).d), d = w - u: |d|^2 times the perpendicular dot.
+  {
+    double d[3], a[3], b[3], mag = 0;
+    for (int k = 0; k < 3; ++k) {
+      d[k] = w.d[k] - u.d[k];
+      a[k] = x.d[k] - u.d[k];
+      b[k] = y.d[k] - u.d[k];
+      mag = std::max({mag, std::fabs(u.d[k]), std::fabs(w.d[k]), std::fabs(x.d[k]), std::fabs(y.d[k])});
+    }
+    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    const double ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+    const double bd = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
+    const double value = ab * dd - ad * bd;
+    // Each difference is off by at most ~8e-16 mag (doubles within one ulp of the
+    // rationals, plus the rounded subtraction); with L >= every length involved, each
+    // product of four is off by < 1e-14 L^4. 1e-12 is generous; doubtful cases go exact.
+    const double L = 2 * std::sqrt(3.0) * mag;
+    const double bound = 1e-12 * L * L * L * L;
+    if (value > bound) return 1;
+    if (value < -bound) return -1;
+  }
+  if (u.exact_double && w.exact_double && x.exact_double && y.exact_double)
+    return perpendicular_dot_integer_sign(u.d.data(), w.d.data(), x.d.data(), y.d.data());
   mpq_class d[3], a[3], b[3];
   for (int k = 0; k < 3; ++k) {
-    d[k] = w.q[k] - u.q[k];
-    a[k] = x.q[k] - u.q[k];
-    b[k] = y.q[k] - u.q[k];
+    d[k] = w.q(k) - u.q(k);
+    a[k] = x.q(k) - u.q(k);
+    b[k] = y.q(k) - u.q(k);
   }
   const mpq_class dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   const mpq_class ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -119,10 +175,25 @@ int perpendicular_dot_sign(const QPoint& u, const QPoint& w, const QPoint& x, co
 }
 
 mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
-  return (b.q[i] - a.q[i]) * (c.q[j] - a.q[j]) - (b.q[j] - a.q[j]) * (c.q[i] - a.q[i]);
+  return (b.q(i) - a.q(i)) * (c.q(j) - a.q(j)) - (b.q(j) - a.q(j)) * (c.q(i) - a.q(i));
+}
+
+int orient2d(const double* a, const double* b, const double* c, int i, int j) {
+  const double bx = b[i] - a[i], by = b[j] - a[j];
+  const double cx = c[i] - a[i], cy = c[j] - a[j];
+  const double l = bx * cy, r = by * cx;
+  const double det = l - r;
+  // Shewchuk's bound for this evaluation is 3.3e-16 (|l| + |r|); 1e-15 is generous.
+  const double bound = 1e-15 * (std::fabs(l) + std::fabs(r));
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  // Collinear points on axis-parallel lines (common in CAD): exactly zero.
+  if ((a[i] == b[i] && a[i] == c[i]) || (a[j] == b[j] && a[j] == c[j])) return 0;
+  return orient2d_integer_sign(a, b, c, i, j);
 }
 
 int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
+  if (a.exact_double && b.exact_double && c.exact_double) return orient2d(a.d.data(), b.d.data(), c.d.data(), i, j);
   const double bx = b.d[i] - a.d[i], by = b.d[j] - a.d[j];
   const double cx = c.d[i] - a.d[i], cy = c.d[j] - a.d[j];
   const double det = bx * cy - by * cx;
@@ -187,6 +258,42 @@ int orient3d_integer_sign(const double* a, const double* b, const double* c, con
   return sgn(det);
 }
 
+int orient2d_integer_sign(const double* a, const double* b, const double* c, int i, int j) {
+  const double* vals[6] = {&a[i], &a[j], &b[i], &b[j], &c[i], &c[j]};
+  thread_local mpz_class z[6];
+  thread_local mpz_class m[4];
+  scale_to_integers(vals, 6, z);
+  m[0] = z[2] - z[0];
+  m[1] = z[3] - z[1];
+  m[2] = z[4] - z[0];
+  m[3] = z[5] - z[1];
+  const mpz_class det = m[0] * m[3] - m[1] * m[2];
+  return sgn(det);
+}
+
+int perpendicular_dot_integer_sign(const double* u, const double* w, const double* x, const double* y) {
+  const double* vals[12];
+  for (int k = 0; k < 3; ++k) {
+    vals[k] = &u[k];
+    vals[3 + k] = &w[k];
+    vals[6 + k] = &x[k];
+    vals[9 + k] = &y[k];
+  }
+  thread_local mpz_class z[12];
+  thread_local mpz_class d[3], a[3], b[3];
+  scale_to_integers(vals, 12, z);
+  for (int k = 0; k < 3; ++k) {
+    d[k] = z[3 + k] - z[k];
+    a[k] = z[6 + k] - z[k];
+    b[k] = z[9 + k] - z[k];
+  }
+  const mpz_class dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const mpz_class ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const mpz_class ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+  const mpz_class bd = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
+  return sgn(mpz_class(ab * dd - ad * bd));
+}
+
 }  // namespace
 
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2) {
@@ -209,22 +316,33 @@ QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, c
     rb[k] = B[k] - F0[k];
   }
   const mpz_class n0 = u[1] * v[2] - u[2] * v[1], n1 = u[2] * v[0] - u[0] * v[2], n2 = u[0] * v[1] - u[1] * v[0];
-  const mpz_class oa = n0 * ra[0] + n1 * ra[1] + n2 * ra[2];
-  const mpz_class ob = n0 * rb[0] + n1 * rb[1] + n2 * rb[2];
+  mpz_class oa = n0 * ra[0] + n1 * ra[1] + n2 * ra[2];
+  mpz_class ob = n0 * rb[0] + n1 * rb[1] + n2 * rb[2];
   mpz_class den = oa - ob;
-  mpq_class c[3];
+  if (sgn(den) < 0) {  // a positive denominator: the truncated doubles need no canonical form
+    den = -den;
+    oa = -oa;
+    ob = -ob;
+  }
+  QPoint r;
+  r.q_ = std::make_unique<std::array<mpq_class, 3>>();
   for (int k = 0; k < 3; ++k) {
-    mpz_class num = oa * B[k] - ob * A[k];
-    mpz_class d = den;
+    mpq_class& c = (*r.q_)[k];
+    mpz_class& num = c.get_num();
+    num = oa * B[k] - ob * A[k];
+    mpz_class& d = c.get_den();
+    d = den;
     if (e >= 0) num <<= e;
     else d <<= -e;
-    c[k] = mpq_class(num, d);
+    r.d[k] = c.get_d();
   }
-  return make_point(c[0], c[1], c[2]);  // canonicalizes
+  // The gcd reduction is the expensive part; most crossings never need it.
+  r.canonical_ = false;
+  return r;
 }
 
 QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t) {
-  return make_point(a.q[0] + t * (b.q[0] - a.q[0]), a.q[1] + t * (b.q[1] - a.q[1]), a.q[2] + t * (b.q[2] - a.q[2]));
+  return make_point_canonical(a.q(0) + t * (b.q(0) - a.q(0)), a.q(1) + t * (b.q(1) - a.q(1)), a.q(2) + t * (b.q(2) - a.q(2)));
 }
 
 Projection face_projection(const QPoint& qa, const QPoint& qb, const QPoint& qc) {
@@ -251,7 +369,8 @@ int compare(const QPoint& a, const QPoint& b, int axis) {
   // The doubles are the rationals truncated towards zero, a monotone map: different doubles decide.
   if (a.d[axis] < b.d[axis]) return -1;
   if (a.d[axis] > b.d[axis]) return 1;
-  return cmp(a.q[axis], b.q[axis]);
+  if (a.exact_double && b.exact_double) return 0;
+  return cmp(a.q(axis), b.q(axis));
 }
 
 }  // namespace mr::surface_union

@@ -25,7 +25,11 @@ public:
 
 private:
   const QPoint& P(int local) const { return pts_[ids_[local]]; }
-  int orient(int a, int b, int c) const { return orient2d(P(a), P(b), P(c), pr_.i, pr_.j); }
+  int orient(int a, int b, int c) const {
+    // Edge crossings lie on their edge: no exact arithmetic needed to see it.
+    if (pts_.known_collinear(ids_[a], ids_[b], ids_[c])) return 0;
+    return orient2d(P(a), P(b), P(c), pr_.i, pr_.j);
+  }
   bool in_box(int p, int a, int b) const;
   bool between(int p, int a, int b) const;
   std::vector<std::array<int, 2>> split_at_points(const std::vector<std::array<int, 2>>& segs) const;

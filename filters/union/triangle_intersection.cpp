@@ -14,7 +14,8 @@ int PairIntersector::edge_plane_point(int a, int b, int face) {
   auto it = edge_face_cache_.find(key);
   if (it != edge_face_cache_.end()) return it->second;
   const auto& F = soup_.face[face];
-  int id = points_.insert(edge_plane_crossing(vp(a), vp(b), vp(F[0]), vp(F[1]), vp(F[2])));
+  int id = points_.insert_on_line(edge_plane_crossing(vp(a), vp(b), vp(F[0]), vp(F[1]), vp(F[2])), vertex_point_[a],
+                                  vertex_point_[b]);
   edge_face_cache_.emplace(key, id);
   return id;
 }
