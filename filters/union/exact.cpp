@@ -78,6 +78,7 @@ mpq_class orient3d_exact(const double* a, const double* b, const double* c, cons
 
 namespace {
 
+int scale_to_integers(const double* const* values, int n, mpz_class* out);
 /// Exact sign of det[b-a, c-a, d-a] with integers (all inputs scaled to one power of two).
 int orient3d_integer_sign(const double* a, const double* b, const double* c, const double* d);
 /// The same for det[b-a, c-a] on axes (i, j).
@@ -296,6 +297,8 @@ int perpendicular_dot_integer_sign(const double* u, const double* w, const doubl
 
 }  // namespace
 
+QPoint crossing_from_integers(const mpz_class& oa, const mpz_class& ob, const mpz_class* A, const mpz_class* B, int e);
+
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2) {
   const double* vals[15];
   for (int k = 0; k < 3; ++k) {
@@ -318,7 +321,18 @@ QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, c
   const mpz_class n0 = u[1] * v[2] - u[2] * v[1], n1 = u[2] * v[0] - u[0] * v[2], n2 = u[0] * v[1] - u[1] * v[0];
   mpz_class oa = n0 * ra[0] + n1 * ra[1] + n2 * ra[2];
   mpz_class ob = n0 * rb[0] + n1 * rb[1] + n2 * rb[2];
-  mpz_class den = oa - ob;
+  return crossing_from_integers(oa, ob, A, B, e);
+}
+
+/// The point (oa B - ob A) / (oa - ob) 2^e, for integer points A, B, with its
+/// truncated doubles; the rationals stay unreduced until used (the gcd is the
+/// expensive part, and most crossings are never needed exactly).
+QPoint crossing_from_integers(const mpz_class& oa_in, const mpz_class& ob_in, const mpz_class* A, const mpz_class* B,
+                              int e) {
+  thread_local mpz_class oa, ob, den;
+  oa = oa_in;
+  ob = ob_in;
+  den = oa - ob;
   if (sgn(den) < 0) {  // a positive denominator: the truncated doubles need no canonical form
     den = -den;
     oa = -oa;
@@ -336,9 +350,22 @@ QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, c
     else d <<= -e;
     r.d[k] = c.get_d();
   }
-  // The gcd reduction is the expensive part; most crossings never need it.
   r.canonical_ = false;
   return r;
+}
+
+QPoint segment_line_crossing(const double* a, const double* b, const double* c0, const double* c1, int i, int j) {
+  const double* vals[10] = {&a[0], &a[1], &a[2], &b[0], &b[1], &b[2], &c0[i], &c0[j], &c1[i], &c1[j]};
+  thread_local mpz_class z[10];
+  thread_local mpz_class ux, uy, oa, ob;
+  const int e = scale_to_integers(vals, 10, z);
+  const mpz_class *A = z, *B = z + 3;
+  ux = z[8] - z[6];
+  uy = z[9] - z[7];
+  // orient2d(c0, c1, x) = ux (x_j - c0_j) - uy (x_i - c0_i)
+  oa = ux * (A[j] - z[7]) - uy * (A[i] - z[6]);
+  ob = ux * (B[j] - z[7]) - uy * (B[i] - z[6]);
+  return crossing_from_integers(oa, ob, A, B, e);
 }
 
 QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t) {

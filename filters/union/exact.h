@@ -37,6 +37,7 @@ private:
 QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint edge_plane_crossing(const double*, const double*, const double*, const double*, const double*);
+  friend QPoint crossing_from_integers(const mpz_class&, const mpz_class&, const mpz_class*, const mpz_class*, int);
   mutable std::unique_ptr<std::array<mpq_class, 3>> q_;
   mutable bool canonical_ = true;
 };
@@ -74,6 +75,10 @@ mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int 
 /// must lie strictly on opposite sides. Computed with integers (all inputs scaled to
 /// one power of two), so only the final coordinates are reduced.
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2);
+
+/// The point where segment (a, b) crosses the line (c0, c1) in the projection on axes
+/// (i, j), exactly; a and b must not both lie on the line. Integers as above.
+QPoint segment_line_crossing(const double* a, const double* b, const double* c0, const double* c1, int i, int j);
 
 /// a + t (b - a), exactly.
 QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t);
