@@ -112,7 +112,9 @@ bool FaceTriangulator::add_crossings(const std::vector<std::array<int, 2>>& segs
       if (disjoint || !crosses(a, b, c, d)) continue;
       const mpq_class oa = orient2d_exact(P(c), P(d), P(a), pr_.i, pr_.j);
       const mpq_class ob = orient2d_exact(P(c), P(d), P(b), pr_.i, pr_.j);
-      const int id = pts_.insert(lerp(P(a), P(b), oa / (oa - ob)));
+      // The crossing lies on both segments: recorded, so splitting them needs no arithmetic.
+      const int id = pts_.insert_on_line(lerp(P(a), P(b), oa / (oa - ob)), ids_[a], ids_[b]);
+      pts_.mark_on_line(id, ids_[c], ids_[d]);
       if (!local_of_.count(id)) {
         local_of_[id] = int(ids_.size());
         ids_.push_back(id);

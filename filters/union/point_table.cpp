@@ -31,29 +31,40 @@ int PointTable::insert(QPoint&& p) {
   }
   points_.push_back(std::move(p));
   next_.push_back(-1);
-  line_.push_back({-1, -1});
+  line_.push_back({Line{-1, -1}, Line{-1, -1}});
   return id;
 }
 
 int PointTable::insert_on_line(QPoint&& p, int u, int w) {
   const int id = insert(std::move(p));
-  if (line_[id][0] < 0 && id != u && id != w) line_[id] = {std::min(u, w), std::max(u, w)};
+  mark_on_line(id, u, w);
   return id;
+}
+
+void PointTable::mark_on_line(int id, int u, int w) {
+  if (id == u || id == w || u == w) return;
+  const Line l{std::min(u, w), std::max(u, w)};
+  for (auto& slot : line_[id]) {
+    if (slot == l) return;
+    if (slot[0] < 0) {
+      slot = l;
+      return;
+    }
+  }
 }
 
 bool PointTable::known_collinear(int a, int b, int c) const {
   const int p[3] = {a, b, c};
-  for (int k = 0; k < 3; ++k) {
-    const auto& l = line_[p[k]];
-    if (l[0] < 0) continue;
-    bool all = true;
-    for (int m = 0; m < 3 && all; ++m) {
-      if (m == k) continue;
-      const int x = p[m];
-      all = x == l[0] || x == l[1] || x == p[k] || line_[x] == l;
+  for (int k = 0; k < 3; ++k)
+    for (const Line& l : line_[p[k]]) {
+      if (l[0] < 0) break;
+      bool all = true;
+      for (int m = 0; m < 3 && all; ++m) {
+        const int x = p[m];
+        all = m == k || x == l[0] || x == l[1] || x == p[k] || line_[x][0] == l || line_[x][1] == l;
+      }
+      if (all) return true;
     }
-    if (all) return true;
-  }
   return false;
 }
 

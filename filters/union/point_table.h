@@ -18,6 +18,9 @@ public:
   /// The same for a point known to lie on the line through points u and w (an edge
   /// crossing): predicates can then tell that it is collinear with them for free.
   int insert_on_line(QPoint&& p, int u, int w);
+  /// Records that point id lies on the line through points u and w (up to two lines
+  /// are kept: a crossing of two segments lies on both).
+  void mark_on_line(int id, int u, int w);
   /// Points a, b, c are known to be collinear (one was built on the line of the others).
   bool known_collinear(int a, int b, int c) const;
   const QPoint& operator[](int i) const { return points_[i]; }
@@ -43,7 +46,8 @@ private:
   // point of a key, next_ chains the others (no allocation per key).
   std::unordered_map<Key, int, KeyHash> index_;
   std::vector<int> next_;
-  std::vector<std::array<int, 2>> line_;  // per point: (u, w) with u < w, or (-1, -1)
+  using Line = std::array<int, 2>;           // (u, w) with u < w, or (-1, -1)
+  std::vector<std::array<Line, 2>> line_;  // per point: lines it is known to lie on
 };
 
 }  // namespace mr::surface_union
