@@ -104,6 +104,9 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
   const double bound = 1e-14 * perm;
   if (det > bound) return 1;
   if (det < -bound) return -1;
+  // Two equal points (a corner tested against its own face): zero without integers.
+  auto same = [](const double* p, const double* q) { return p[0] == q[0] && p[1] == q[1] && p[2] == q[2]; };
+  if (same(d, a) || same(d, b) || same(d, c) || same(a, b) || same(a, c) || same(b, c)) return 0;
   return orient3d_integer_sign(a, b, c, d);
 }
 
@@ -190,6 +193,8 @@ int orient2d(const double* a, const double* b, const double* c, int i, int j) {
   if (det < -bound) return -1;
   // Collinear points on axis-parallel lines (common in CAD): exactly zero.
   if ((a[i] == b[i] && a[i] == c[i]) || (a[j] == b[j] && a[j] == c[j])) return 0;
+  auto same = [&](const double* p, const double* q) { return p[i] == q[i] && p[j] == q[j]; };
+  if (same(a, b) || same(a, c) || same(b, c)) return 0;
   return orient2d_integer_sign(a, b, c, i, j);
 }
 

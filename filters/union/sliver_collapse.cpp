@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "union/exact.h"
 
@@ -28,7 +29,12 @@ double angle(const V3& o, const V3& p, const V3& q) {
 }
 
 double face_min_angle(const V3& a, const V3& b, const V3& c) {
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+  // The smallest angle lies opposite the shortest side: one atan2 instead of three.
+  const V3 ab = sub3(b, a), bc = sub3(c, b), ca = sub3(a, c);
+  const double lab = dot(ab, ab), lbc = dot(bc, bc), lca = dot(ca, ca);
+  if (lab <= lbc && lab <= lca) return angle(c, a, b);
+  if (lbc <= lca) return angle(a, b, c);
+  return angle(b, c, a);
 }
 
 class Collapser {
@@ -69,12 +75,13 @@ private:
   /// Moves v onto w if allowed; with `apply` false only checks, and `dv` gets the volume change.
   bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
   bool try_flip(int f, int z);      // flips side z of face f
-  std::vector<int> live_faces(int v) const {
-    std::vector<int> out;
+  void live_faces(int v, std::vector<int>& out) const {
+    out.clear();
     for (int f : vf_[v])
       if (alive_[f]) out.push_back(f);
-    return out;
   }
+  // Reused by try_collapse (called for every candidate edge): no allocation per call.
+  std::vector<int> scratch_fv_, scratch_fw_, scratch_nv_, scratch_nw_;
 
   Result& r_;
   std::vector<char> alive_;
@@ -82,7 +89,13 @@ private:
   std::vector<char> changed_;  // vertices whose neighbourhood changed in this pass
   std::vector<char> cut_;
   std::vector<std::vector<int>> vf_;
-  std::set<std::pair<int, int>> line_;
+  struct PairHash {
+    size_t operator()(const std::pair<int, int>& e) const {
+      const uint64_t h = (uint64_t(uint32_t(e.first)) << 32 | uint32_t(e.second)) * 0x9E3779B97F4A7C15ull;
+      return size_t(h ^ (h >> 29));
+    }
+  };
+  std::unordered_set<std::pair<int, int>, PairHash> line_;
   std::vector<int> line_degree_;
   double max_dev_ = 0;
   double volume_budget_ = 0;  // what the accepted moves may still change in total
@@ -105,13 +118,19 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2.
   const bool vw_line = line_.count(ekey(v, w)) > 0;
   if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) return false;
-  const std::vector<int> fv = live_faces(v), fw = live_faces(w);
+  std::vector<int>& fv = scratch_fv_;
+  std::vector<int>& fw = scratch_fw_;
+  live_faces(v, fv);
+  live_faces(w, fw);
   // Link condition: v and w share exactly the two opposite vertices of their two faces.
   int shared_faces = 0;
   for (int f : fv)
     if (std::find(r_.faces[f].begin(), r_.faces[f].end(), w) != r_.faces[f].end()) ++shared_faces;
   if (shared_faces != 2) return false;
-  std::vector<int> nv, nw;  // one-rings (sorted, unique)
+  std::vector<int>& nv = scratch_nv_;  // one-rings (sorted, unique)
+  std::vector<int>& nw = scratch_nw_;
+  nv.clear();
+  nw.clear();
   for (int f : fv) nv.insert(nv.end(), r_.faces[f].begin(), r_.faces[f].end());
   for (int f : fw) nw.insert(nw.end(), r_.faces[f].begin(), r_.faces[f].end());
   for (auto* n : {&nv, &nw}) {
@@ -332,14 +351,8 @@ bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, 
     for (int t = 1; t < 3; ++t)
       if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
     const Projection pr{(k + 1) % 3, (k + 2) % 3};
-    // Doubles are exact inputs: a filtered 2D orientation with an exact fallback.
-    auto o = [&](const V3& x, const V3& y, const V3& z) {
-      const double det = (y[pr.i] - x[pr.i]) * (z[pr.j] - x[pr.j]) - (y[pr.j] - x[pr.j]) * (z[pr.i] - x[pr.i]);
-      const double perm = std::fabs((y[pr.i] - x[pr.i]) * (z[pr.j] - x[pr.j])) + std::fabs((y[pr.j] - x[pr.j]) * (z[pr.i] - x[pr.i]));
-      if (det > 1e-14 * perm) return 1;
-      if (det < -1e-14 * perm) return -1;
-      return orient2d(make_point(x), make_point(y), make_point(z), pr.i, pr.j);
-    };
+    // Doubles are exact inputs: the filtered 2D orientation with an integer fallback.
+    auto o = [&](const V3& x, const V3& y, const V3& z) { return orient2d(x.data(), y.data(), z.data(), pr.i, pr.j); };
     const int sign = o(a, b, c);  // orientation of the triangle in this projection
     const V3 &P = p, &Q = q, &A = a, &B = b, &C = c;
     auto inside = [&](const V3& x) { return sign * o(A, B, x) >= 0 && sign * o(B, C, x) >= 0 && sign * o(C, A, x) >= 0; };
@@ -376,6 +389,24 @@ bool faces_meet(const Result& r, int f, int g) {
       if (F[i] == G[j] || r.vertices[F[i]] == r.vertices[G[j]]) { ++shared; sf = i; sg = j; }
   if (shared >= 2) return false;  // neighbours across an edge
   const auto& V = r.vertices;
+  // Separating planes: a face strictly on one side of the other's plane (but for a
+  // shared corner) cannot meet it. Coplanar pairs go to the tests below.
+  for (int k = 0; k < 2; ++k) {
+    const auto& A = k == 0 ? F : G;
+    const auto& B = k == 0 ? G : F;
+    int pos = 0, neg = 0, zero = 0;
+    for (int i = 0; i < 3; ++i) {
+      const int o = orient3d(V[A[0]].data(), V[A[1]].data(), V[A[2]].data(), V[B[i]].data());
+      pos += o > 0;
+      neg += o < 0;
+      zero += o == 0;
+    }
+    if (zero == 3) break;
+    if (pos + shared == 3 || neg + shared == 3) {
+      // All but the shared corner strictly on one side (the shared corner has o == 0).
+      if (shared == 0 || zero == 1) return false;
+    }
+  }
   if (shared == 1) {  // only the edges opposite the shared corner can cross the other face
     return segment_meets_triangle(V[F[(sf + 1) % 3]], V[F[(sf + 2) % 3]], V[G[0]], V[G[1]], V[G[2]]) ||
            segment_meets_triangle(V[G[(sg + 1) % 3]], V[G[(sg + 2) % 3]], V[F[0]], V[F[1]], V[F[2]]);
@@ -426,10 +457,12 @@ std::vector<int> new_intersections(const Collapser& c) {
       for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1); ++j)
         for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) grid[key(i, j, k)].push_back(f);
   }
+  std::vector<int> seen(r.faces.size(), 0);
+  int stamp = 0;
   for (int f : touched) {
     V3 lo, hi;
     box(f, lo, hi);
-    std::set<int> seen;
+    ++stamp;
     bool hit = false;
     for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0) && !hit; ++i)
       for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1) && !hit; ++j)
@@ -437,7 +470,8 @@ std::vector<int> new_intersections(const Collapser& c) {
           auto it = grid.find(key(i, j, k));
           if (it == grid.end()) continue;
           for (int g : it->second) {
-            if (g == f || !seen.insert(g).second) continue;
+            if (g == f || seen[g] == stamp) continue;
+            seen[g] = stamp;
             V3 glo, ghi;
             box(g, glo, ghi);
             bool apart = false;
