@@ -379,6 +379,34 @@ bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, 
   return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
 }
 
+/// Coplanar faces F and G are separated by one of their edge lines: the other face lies
+/// strictly on its outer side but for corners shared with that edge, so they meet at
+/// most in shared corners. A cheap exact rejection before the closed segment tests.
+bool coplanar_separated(const std::vector<V3>& V, const std::array<int, 3>& F, const std::array<int, 3>& G) {
+  const V3 n = cross(sub3(V[F[1]], V[F[0]]), sub3(V[F[2]], V[F[0]]));
+  int k = 0;
+  for (int t = 1; t < 3; ++t)
+    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  auto o = [&](int x, int y, int z) { return orient2d(V[x].data(), V[y].data(), V[z].data(), i, j); };
+  for (int side = 0; side < 2; ++side) {
+    const auto& A = side == 0 ? F : G;
+    const auto& B = side == 0 ? G : F;
+    const int sa = o(A[0], A[1], A[2]);
+    for (int z = 0; z < 3; ++z) {
+      const int a0 = A[z], a1 = A[(z + 1) % 3];
+      bool separated = true;
+      for (int m = 0; m < 3 && separated; ++m) {
+        const int b = B[m];
+        if (V[b] == V[a0] || V[b] == V[a1]) continue;  // a shared corner on this edge
+        separated = sa * o(a0, a1, b) < 0;
+      }
+      if (separated) return true;
+    }
+  }
+  return false;
+}
+
 /// Faces f and g (of one mesh) intersect other than along what they share.
 bool faces_meet(const Result& r, int f, int g) {
   const auto &F = r.faces[f], &G = r.faces[g];
@@ -401,7 +429,10 @@ bool faces_meet(const Result& r, int f, int g) {
       neg += o < 0;
       zero += o == 0;
     }
-    if (zero == 3) break;
+    if (zero == 3) {
+      if (coplanar_separated(V, F, G)) return false;
+      break;
+    }
     if (pos + shared == 3 || neg + shared == 3) {
       // All but the shared corner strictly on one side (the shared corner has o == 0).
       if (shared == 0 || zero == 1) return false;
