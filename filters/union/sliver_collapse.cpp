@@ -15,6 +15,9 @@ namespace {
 
 using V3 = std::array<double, 3>;
 constexpr double kPi = 3.14159265358979323846;
+// A star is smooth when every face normal is within ~45 degrees of the star's mean
+// normal (CAD creases of 90 degrees are not; sphere meshes and blobs are).
+constexpr double kSmoothStarCos = 0.7;
 
 V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -75,13 +78,21 @@ private:
   /// Moves v onto w if allowed; with `apply` false only checks, and `dv` gets the volume change.
   bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
   bool try_flip(int f, int z);      // flips side z of face f
+  /// Moves free vertex x (no line, not frozen) along the volume gradient of its star so
+  /// that the enclosed volume changes by -dv6 / 6, when no face flips or becomes (more
+  /// of) a sliver and the move stays within the deviation bound.
+  bool compensate(int x, double dv6);
+  /// Moves free vertex x towards the centroid of its ring, projected so that the volume
+  /// stays the same (perpendicular to its star's volume gradient), when that raises the
+  /// worst angle of its faces and flips none.
+  bool try_relocate(int x);
   void live_faces(int v, std::vector<int>& out) const {
     out.clear();
     for (int f : vf_[v])
       if (alive_[f]) out.push_back(f);
   }
   // Reused by try_collapse (called for every candidate edge): no allocation per call.
-  std::vector<int> scratch_fv_, scratch_fw_, scratch_nv_, scratch_nw_;
+  std::vector<int> scratch_fv_, scratch_fw_, scratch_nv_, scratch_nw_, scratch_fx_;
 
   Result& r_;
   std::vector<char> alive_;
@@ -141,46 +152,97 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   for (int x : nv)
     if (x != v && x != w && std::binary_search(nw.begin(), nw.end(), x)) ++common;
   if (common != 2) return false;
-  // Geometry: no flipped or degenerate face, bounded deviation, better worst angle.
-  double before = 1e300, after = 1e300;
-  int bad_before = 0, bad_after = 0;
-  for (int f : fv) {
-    const double a = min_angle(f);
-    before = std::min(before, a);
-    bad_before += a < threshold_;
+  // Target: w's position, moved along the volume gradient of the new star so that the
+  // enclosed volume stays the same (Lindstrom-Turk); the move is tiny where the
+  // surface is nearly flat. Coordinates relative to w keep the sums accurate. w stays
+  // put when it is frozen or on a line other than the one v slides along.
+  const bool w_free = !frozen[w] && (line_degree_[w] == 0 || (vw_line && line_degree_[w] == 2));
+  const V3 o = P(w);
+  auto rel = [&](int x) { return sub3(P(x), o); };
+  double s_old = 0;  // six times the old volume of the star (relative to o)
+  V3 g{0, 0, 0};     // six times the new volume is g . p (p relative to o)
+  for (int pass = 0; pass < 2; ++pass)
+    for (int f : pass == 0 ? fv : fw) {
+      const auto& t = r_.faces[f];
+      const bool has_v = std::find(t.begin(), t.end(), v) != t.end();
+      const bool has_w = std::find(t.begin(), t.end(), w) != t.end();
+      if (pass == 1 && has_v) continue;  // counted with v's faces
+      s_old += det(rel(t[0]), rel(t[1]), rel(t[2]));
+      if (has_v && has_w) continue;  // dies
+      for (int z = 0; z < 3; ++z)
+        if (t[z] == v || t[z] == w) {
+          const V3 bc = cross(rel(t[(z + 1) % 3]), rel(t[(z + 2) % 3]));
+          for (int k = 0; k < 3; ++k) g[k] += bc[k];
+        }
+    }
+  const double gg = dot(g, g);
+  // Checks one target p (relative to w): no flipped or degenerate face, bounded
+  // deviation, a better worst angle; gives six times the volume change.
+  auto acceptable = [&](const V3& p, double& dv) {
+    if (norm(p) > max_dev_) return false;
+    const bool moves_w = p[0] != 0 || p[1] != 0 || p[2] != 0;
+    const V3 target{o[0] + p[0], o[1] + p[1], o[2] + p[2]};
+    double before = 1e300, after = 1e300;
+    int bad_before = 0, bad_after = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+      if (pass == 1 && !moves_w) break;  // w's other faces keep their shape
+      for (int f : pass == 0 ? fv : fw) {
+        const auto& t = r_.faces[f];
+        const bool has_v = std::find(t.begin(), t.end(), v) != t.end();
+        const bool has_w = std::find(t.begin(), t.end(), w) != t.end();
+        if (pass == 1 && has_v) continue;
+        const double a0 = min_angle(f);
+        if (pass == 0) before = std::min(before, a0);
+        bad_before += a0 < threshold_;
+        if (has_v && has_w) continue;
+        V3 q[3];
+        for (int z = 0; z < 3; ++z) q[z] = t[z] == v || t[z] == w ? target : P(t[z]);
+        const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+        const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+        const double ln = norm(n_new), lo = norm(n_old);
+        if (!(ln > 0) || dot(n_old, n_new) <= 0.1 * lo * ln) return false;
+        if (std::fabs(dot(sub3(P(has_v ? v : w), q[0]), n_new)) / ln > max_dev_) return false;
+        const double a = face_min_angle(q[0], q[1], q[2]);
+        // A face the cut did not make is never turned into a sliver (nothing would treat it).
+        if (!cut_[f] && a < threshold_ && a < a0) return false;
+        after = std::min(after, a);
+        bad_after += a < threshold_;
+      }
+    }
+    // Better: a larger worst angle, or fewer slivers without making the worst one
+    // much worse (two neighbouring slivers often cannot both improve in one step).
+    if (!(after > before || (bad_after < bad_before && after >= 0.5 * before))) return false;
+    dv = dot(g, p) - s_old;
+    return true;
+  };
+  // First the volume-keeping target; if it is refused (a large move on a strongly
+  // curved star), w itself, with the volume given back by a neighbour or the budget.
+  V3 p{0, 0, 0};
+  double dv = 0;
+  bool ok = false;
+  if (w_free && gg > 0) {
+    for (int k = 0; k < 3; ++k) p[k] = s_old / gg * g[k];
+    ok = acceptable(p, dv);
   }
-  for (int f : fv) {
-    const auto& t = r_.faces[f];
-    if (std::find(t.begin(), t.end(), w) != t.end()) continue;
-    V3 q[3];
-    for (int z = 0; z < 3; ++z) q[z] = t[z] == v ? P(w) : P(t[z]);
-    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
-    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
-    const double ln = norm(n_new), lo = norm(n_old);
-    if (!(ln > 0) || dot(n_old, n_new) <= 0.1 * lo * ln) return false;
-    if (std::fabs(dot(sub3(P(v), q[0]), n_new)) / ln > max_dev_) return false;
-    const double a = face_min_angle(q[0], q[1], q[2]);
-    after = std::min(after, a);
-    bad_after += a < threshold_;
+  if (!ok) {
+    p = {0, 0, 0};
+    if (!acceptable(p, dv)) return false;
   }
-  // Better: a larger worst angle, or fewer slivers without making the worst one
-  // much worse (two neighbouring slivers often cannot both improve in one step).
-  if (!(after > before || (bad_after < bad_before && after >= 0.5 * before))) return false;
-  double dv = 0;  // six times the volume change
-  for (int f : fv) {
-    const auto& t = r_.faces[f];
-    dv -= det(P(t[0]), P(t[1]), P(t[2]));
-    if (std::find(t.begin(), t.end(), w) != t.end()) continue;
-    V3 q[3];
-    for (int z = 0; z < 3; ++z) q[z] = t[z] == v ? P(w) : P(t[z]);
-    dv += det(q[0], q[1], q[2]);
-  }
+  const V3 target{o[0] + p[0], o[1] + p[1], o[2] + p[2]};
+  const bool moved = p[0] != 0 || p[1] != 0 || p[2] != 0;
   if (std::fabs(dv) / 6 > volume_budget_) return false;
-  if (dv_out) *dv_out = std::fabs(dv) / 6;
+  // Score: the volume change plus the volume swept by the compensating move.
+  if (dv_out) *dv_out = std::fabs(dv) / 6 + norm(p) * std::sqrt(gg) / 6;
   if (!apply) return true;
+  const double budget_before = volume_budget_;
   volume_budget_ -= std::fabs(dv) / 6;
   for (int x : nv) changed_[x] = 1;
   for (int x : nw) changed_[x] = 1;
+  if (moved) {
+    r_.vertices[w] = target;
+    for (int f : fw) touched_[f] = 1;
+  }
+  const std::vector<int> link = nv;  // copies: compensate() reuses the scratch vectors
   for (int f : fv) {
     auto& t = r_.faces[f];
     touched_[f] = 1;
@@ -208,6 +270,13 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
     for (const auto& e : moved)
       if (line_.insert(e).second) { ++line_degree_[e.first]; ++line_degree_[e.second]; }
   }
+  // w could not take the compensating move: a free neighbour gives the volume back.
+  if (!moved && dv != 0)
+    for (int x : link)
+      if (x != v && x != w && compensate(x, dv)) {
+        volume_budget_ = budget_before;
+        break;
+      }
   return true;
 }
 
@@ -238,21 +307,141 @@ bool Collapser::try_flip(int f, int z) {
   const double before = std::min(min_angle(f), min_angle(g));
   const double after = std::min(face_min_angle(P(u), P(d), P(c)), face_min_angle(P(d), P(v), P(c)));
   if (!(after > before)) return false;
-  const double dv = std::fabs(det(P(u), P(d), P(c)) + det(P(d), P(v), P(c)) - det(P(u), P(v), P(c)) - det(P(v), P(u), P(d))) / 6;
-  if (dv > volume_budget_) return false;
-  volume_budget_ -= dv;
   if (frozen[d]) return false;
+  // Six times the volume change, relative to u for accuracy.
+  auto rel = [&](int x) { return sub3(P(x), P(u)); };
+  const double dv6 = det(rel(u), rel(d), rel(c)) + det(rel(d), rel(v), rel(c)) - det(rel(u), rel(v), rel(c)) -
+                     det(rel(v), rel(u), rel(d));
   r_.faces[f] = {u, d, c};
   r_.faces[g] = {d, v, c};
-  touched_[f] = touched_[g] = 1;
-  for (int x : {u, v, c, d})
-    for (int h : vf_[x])
-      if (alive_[h])
-        for (int y : r_.faces[h]) changed_[y] = 1;
   vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
   vf_[v].erase(std::remove(vf_[v].begin(), vf_[v].end(), f), vf_[v].end());
   vf_[c].push_back(g);
   vf_[d].push_back(f);
+  // Give the volume back by a small move of one free corner; else it is paid from the budget.
+  bool compensated = dv6 == 0;
+  for (int x : {c, d, u, v})
+    if (!compensated) compensated = compensate(x, dv6);
+  if (!compensated) {  // all four on lines or refused: a free vertex one ring further
+    std::vector<int> ring;
+    for (int x : {c, d})
+      for (int h : vf_[x])
+        if (alive_[h]) ring.insert(ring.end(), r_.faces[h].begin(), r_.faces[h].end());
+    for (int x : ring)
+      if (!compensated && x != u && x != v && x != c && x != d) compensated = compensate(x, dv6);
+  }
+  if (!compensated) {
+    if (std::fabs(dv6) / 6 > volume_budget_) {  // undo
+      vf_[c].pop_back();
+      vf_[d].pop_back();
+      vf_[u].push_back(g);
+      vf_[v].push_back(f);
+      r_.faces[f] = {u, v, c};
+      r_.faces[g] = {v, u, d};
+      return false;
+    }
+    volume_budget_ -= std::fabs(dv6) / 6;
+  }
+  touched_[f] = touched_[g] = 1;
+  cut_[f] = cut_[g] = cut_[f] || cut_[g];  // both new faces replace a cut face: treated on
+  for (int x : {u, v, c, d})
+    for (int h : vf_[x])
+      if (alive_[h])
+        for (int y : r_.faces[h]) changed_[y] = 1;
+  return true;
+}
+
+bool Collapser::try_relocate(int x) {
+  if (frozen[x] || line_degree_[x] > 0) return false;
+  std::vector<int>& fx = scratch_fx_;
+  live_faces(x, fx);
+  if (fx.empty()) return false;
+  const V3 o = P(x);
+  V3 g{0, 0, 0}, centroid{0, 0, 0};
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    for (int z = 0; z < 3; ++z)
+      if (t[z] == x) {
+        const V3 b = sub3(P(t[(z + 1) % 3]), o), c = sub3(P(t[(z + 2) % 3]), o);
+        const V3 bc = cross(b, c);
+        for (int k = 0; k < 3; ++k) {
+          g[k] += bc[k];
+          centroid[k] += (b[k] + c[k]) / (2.0 * double(fx.size()));
+        }
+      }
+  }
+  const double gg = dot(g, g);
+  if (!(gg > 0)) return false;
+  // Only on a smooth patch (no crease through x): there the slide barely moves the surface.
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    const V3 n = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    if (dot(n, g) < kSmoothStarCos * norm(n) * std::sqrt(gg)) return false;
+  }
+  V3 delta = centroid;
+  const double along = dot(g, delta) / gg;
+  for (int k = 0; k < 3; ++k) delta[k] -= along * g[k];  // g . delta = 0: same volume
+  const double len = norm(delta);
+  if (!(len > 0)) return false;
+  if (len > max_dev_)
+    for (double& d : delta) d *= max_dev_ / len;
+  const V3 moved{o[0] + delta[0], o[1] + delta[1], o[2] + delta[2]};
+  double before = 1e300, after = 1e300;
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    V3 q[3];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? moved : P(t[z]);
+    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+    if (!(norm(n_new) > 0) || dot(n_old, n_new) <= 0.1 * norm(n_old) * norm(n_new)) return false;
+    const double a = face_min_angle(q[0], q[1], q[2]);
+    if (!cut_[f] && a < threshold_ && a < min_angle(f)) return false;
+    before = std::min(before, min_angle(f));
+    after = std::min(after, a);
+  }
+  if (!(after > before)) return false;
+  r_.vertices[x] = moved;
+  for (int f : fx) {
+    touched_[f] = 1;
+    for (int y : r_.faces[f]) changed_[y] = 1;
+  }
+  return true;
+}
+
+bool Collapser::compensate(int x, double dv6) {
+  if (frozen[x] || line_degree_[x] > 0) return false;
+  std::vector<int>& fx = scratch_fx_;
+  live_faces(x, fx);
+  const V3 o = P(x);
+  V3 g{0, 0, 0};  // six times the volume change is g . delta
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    for (int z = 0; z < 3; ++z)
+      if (t[z] == x) {
+        const V3 bc = cross(sub3(P(t[(z + 1) % 3]), o), sub3(P(t[(z + 2) % 3]), o));
+        for (int k = 0; k < 3; ++k) g[k] += bc[k];
+      }
+  }
+  const double gg = dot(g, g);
+  if (!(gg > 0)) return false;
+  V3 delta;
+  for (int k = 0; k < 3; ++k) delta[k] = -dv6 / gg * g[k];
+  if (norm(delta) > max_dev_) return false;
+  const V3 moved{o[0] + delta[0], o[1] + delta[1], o[2] + delta[2]};
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    V3 q[3];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? moved : P(t[z]);
+    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+    if (!(norm(n_new) > 0) || dot(n_old, n_new) <= 0.1 * norm(n_old) * norm(n_new)) return false;
+    if (face_min_angle(q[0], q[1], q[2]) < std::min(min_angle(f), threshold_)) return false;
+  }
+  r_.vertices[x] = moved;
+  for (int f : fx) {
+    touched_[f] = 1;
+    for (int y : r_.faces[f]) changed_[y] = 1;
+  }
   return true;
 }
 
@@ -298,6 +487,9 @@ int Collapser::run(double threshold) {
       // Otherwise a flip of any side may reshape the neighbourhood for a later pass.
       for (int k = 2; k >= 0 && !ok; --k)
         if (try_flip(f, edges[k].second)) { ++done; ++flips_; ok = true; }
+      // Or a corner slides towards the middle of its ring, within the surface.
+      for (int z = 0; z < 3 && !ok; ++z)
+        if (try_relocate(t[z])) { ++done; ok = true; }
     }
     if (done == 0) break;
   }
