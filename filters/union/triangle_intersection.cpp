@@ -161,6 +161,21 @@ namespace {
 
 }  // namespace
 
+int PairIntersector::edge_edge_point(int a, int b, int c, int d, const Projection& pr) {
+  // The crossing of two coplanar lines is one point whatever the projection or the
+  // order: the key is the unordered pair of undirected edges.
+  if (a > b) std::swap(a, b);
+  if (c > d) std::swap(c, d);
+  EEKey key = a < c || (a == c && b < d) ? EEKey{a, b, c, d} : EEKey{c, d, a, b};
+  auto it = edge_edge_cache_.find(key);
+  if (it != edge_edge_cache_.end()) return it->second;
+  const int id = points_.insert_on_line(segment_line_crossing(vp(a), vp(b), vp(c), vp(d), pr.i, pr.j),
+                                        vertex_point_[a], vertex_point_[b]);
+  points_.mark_on_line(id, vertex_point_[c], vertex_point_[d]);
+  edge_edge_cache_.emplace(key, id);
+  return id;
+}
+
 bool PairIntersector::coplanar(int f, int g, std::unordered_map<int, FaceConstraints>& cf) {
   const auto& T = soup_.face[f];
   const auto& X = soup_.face[g];
@@ -179,8 +194,7 @@ bool PairIntersector::coplanar(int f, int g, std::unordered_map<int, FaceConstra
     for (int k = 1; k < 3; ++k)
       if (std::fabs(b[k] - a[k]) > std::fabs(b[axis] - a[axis])) axis = k;
     const int dir = b[axis] > a[axis] ? 1 : -1;
-    QPoint enter, leave;
-    bool moved0 = false, moved1 = false;
+    int enter = -1, leave = -1;  // point ids of the clip points
     for (int e = 0; e < 3; ++e) {
       const double* c0 = vp(C[e]);
       const double* c1 = vp(C[(e + 1) % 3]);
@@ -188,18 +202,16 @@ bool PairIntersector::coplanar(int f, int g, std::unordered_map<int, FaceConstra
       const int sb = sc * orient2d(c0, c1, b, pr.i, pr.j);
       if (sa < 0 && sb < 0) return false;
       if (sa >= 0 && sb >= 0) continue;
-      QPoint x = segment_line_crossing(a, b, c0, c1, pr.i, pr.j);
+      const int x = edge_edge_point(va, vb, C[e], C[(e + 1) % 3], pr);
       if (sa < 0) {  // entering: the last entry counts
-        if (!moved0 || dir * compare(x, enter, axis) > 0) { enter = std::move(x); moved0 = true; }
-      } else if (!moved1 || dir * compare(x, leave, axis) < 0) {  // leaving: the first exit counts
-        leave = std::move(x);
-        moved1 = true;
+        if (enter < 0 || dir * compare(points_[x], points_[enter], axis) > 0) enter = x;
+      } else if (leave < 0 || dir * compare(points_[x], points_[leave], axis) < 0) {  // leaving: the first exit counts
+        leave = x;
       }
     }
-    if (moved0 && moved1 && dir * compare(enter, leave, axis) > 0) return false;
-    const int pa = vertex_point_[va], pb = vertex_point_[vb];
-    const int p = moved0 ? points_.insert_on_line(std::move(enter), pa, pb) : pa;
-    const int q = moved1 ? points_.insert_on_line(std::move(leave), pa, pb) : pb;
+    if (enter >= 0 && leave >= 0 && dir * compare(points_[enter], points_[leave], axis) > 0) return false;
+    const int p = enter >= 0 ? enter : vertex_point_[va];
+    const int q = leave >= 0 ? leave : vertex_point_[vb];
     add_result(out, p, q);
     return true;
   };
