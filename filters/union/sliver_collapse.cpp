@@ -449,18 +449,20 @@ int Collapser::run(double threshold) {
   threshold_ = threshold;
   changed_.assign(r_.vertices.size(), 1);
   for (int pass = 0; pass < 10; ++pass) {
+    // After the first pass only slivers whose neighbourhood changed can have new options.
+    std::vector<char> changed;
+    changed.swap(changed_);
+    changed_.assign(r_.vertices.size(), 0);
     std::vector<std::pair<double, int>> bad;
     for (int f = 0; f < int(r_.faces.size()); ++f)
       if (alive_[f] && cut_[f]) {
+        const auto& t = r_.faces[f];
+        if (pass > 0 && !changed[t[0]] && !changed[t[1]] && !changed[t[2]]) continue;
         const double a = min_angle(f);
         if (a < threshold) bad.push_back({a, f});
       }
     std::sort(bad.begin(), bad.end());
     int done = 0;
-    // After the first pass only slivers whose neighbourhood changed can have new options.
-    std::vector<char> changed;
-    changed.swap(changed_);
-    changed_.assign(r_.vertices.size(), 0);
     for (const auto& [a0, f] : bad) {
       if (!alive_[f] || min_angle(f) >= threshold) continue;
       const auto t = r_.faces[f];
@@ -671,16 +673,29 @@ std::vector<int> new_intersections(const Collapser& c) {
   const double cell = std::max({2 * sizes[sizes.size() / 2], extent / 200, 1e-300});
   auto cell_of = [&](double x, int k) { return int64_t(std::floor((x - all_lo[k]) / cell)); };
   auto key = [](int64_t i, int64_t j, int64_t k) { return (i * 73856093) ^ (j * 19349663) ^ (k * 83492791); };
+  // Only cells that a touched face covers are ever looked at: the others stay empty.
   std::unordered_map<int64_t, std::vector<int>> grid;
+  for (int f : touched) {
+    V3 lo, hi;
+    box(f, lo, hi);
+    for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0); ++i)
+      for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1); ++j)
+        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) grid[key(i, j, k)];
+  }
   for (int f = 0; f < int(r.faces.size()); ++f) {
     if (!c.alive(f)) continue;
     V3 lo, hi;
     box(f, lo, hi);
     for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0); ++i)
       for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1); ++j)
-        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) grid[key(i, j, k)].push_back(f);
+        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) {
+          auto it = grid.find(key(i, j, k));
+          if (it != grid.end()) it->second.push_back(f);
+        }
   }
   std::vector<int> seen(r.faces.size(), 0);
+  std::vector<char> is_touched(r.faces.size(), 0);
+  for (int f : touched) is_touched[f] = 1;
   int stamp = 0;
   for (int f : touched) {
     V3 lo, hi;
@@ -693,13 +708,18 @@ std::vector<int> new_intersections(const Collapser& c) {
           auto it = grid.find(key(i, j, k));
           if (it == grid.end()) continue;
           for (int g : it->second) {
-            if (g == f || seen[g] == stamp) continue;
+            // A pair of touched faces is checked once, from the lower index.
+            if (g == f || seen[g] == stamp || (is_touched[g] && g < f)) continue;
             seen[g] = stamp;
             V3 glo, ghi;
             box(g, glo, ghi);
             bool apart = false;
             for (int a = 0; a < 3; ++a) apart |= ghi[a] < lo[a] || hi[a] < glo[a];
-            if (!apart && faces_meet(r, f, g)) { hit = true; break; }
+            if (!apart && faces_meet(r, f, g)) {
+              hit = true;
+              if (is_touched[g]) bad.push_back(g);  // its own check skipped this pair
+              break;
+            }
           }
         }
     if (hit) bad.push_back(f);
