@@ -155,11 +155,21 @@ int perpendicular_dot_sign(const QPoint& u, const QPoint& w, const QPoint& x, co
     const double ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
     const double bd = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
     const double value = ab * dd - ad * bd;
-    // Each difference is off by at most ~8e-16 mag (doubles within one ulp of the
-    // rationals, plus the rounded subtraction); with L >= every length involved, each
-    // product of four is off by < 1e-14 L^4. 1e-12 is generous; doubtful cases go exact.
-    const double L = 2 * std::sqrt(3.0) * mag;
-    const double bound = 1e-12 * L * L * L * L;
+    // Each coordinate difference is off by at most e1 = 6.7e-16 mag (both doubles
+    // within one ulp, 2.2e-16 relative, of the rationals, plus the rounded subtraction),
+    // a vector by e = sqrt(3) e1 < 1.2e-15 mag. A dot product x.y is then off by e (|x| + |y|) + e^2 plus its own
+    // rounding (< 3.4e-16 |x| |y|); a product of two dots by the first times the other
+    // dot and vice versa, plus rounding. The bound doubles that sum: generous, and it
+    // scales with the features' size rather than with their distance from the origin.
+    const double e = 1.2e-15 * mag;
+    const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (1 + 1e-15);
+    const double lb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) * (1 + 1e-15);
+    const double ld = std::sqrt(dd) * (1 + 1e-15);
+    auto dot_err = [&](double lx, double ly) { return e * (lx + ly) + e * e + 3.4e-16 * lx * ly; };
+    const double e_ab = dot_err(la, lb), e_dd = dot_err(ld, ld), e_ad = dot_err(la, ld), e_bd = dot_err(lb, ld);
+    const double m_ab = la * lb + e_ab, m_dd = ld * ld + e_dd, m_ad = la * ld + e_ad, m_bd = lb * ld + e_bd;
+    const double err = m_ab * e_dd + m_dd * e_ab + m_ad * e_bd + m_bd * e_ad + 4.5e-16 * (m_ab * m_dd + m_ad * m_bd);
+    const double bound = 2 * err;
     if (value > bound) return 1;
     if (value < -bound) return -1;
   }
