@@ -124,9 +124,15 @@ int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d)
   const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
                      m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
   // The doubles are within one ulp of the rationals (relative 2.2e-16 of |coordinate|):
-  // each entry is off by at most ~4.4e-16 mag, so the determinant by at most
-  // 6 * 3 * 4.4e-16 * mag * (2 mag)^2 < 3.2e-14 mag^3; 1e-13 is generous.
-  const double bound = 1e-13 * mag * mag * mag;
+  // each entry (a rounded difference) is off by at most e = 6.7e-16 mag. With M the
+  // largest entry, each of the six products is then off by < 3 e M^2 + 3 e^2 M + e^3,
+  // and evaluating in doubles adds < 7.8e-16 times the permanent (< 6 M^3). Twice that:
+  // the bound follows the size of the tetrahedron, not its distance from the origin.
+  double M = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) M = std::max(M, std::fabs(m[r][k]));
+  const double err = 6.7e-16 * mag;
+  const double bound = 2 * (18 * err * M * M + 18 * err * err * M + 6 * err * err * err + 7.8e-16 * 6 * M * M * M);
   if (det > bound) return 1;
   if (det < -bound) return -1;
   mpq_class q[3][3];
@@ -213,11 +219,15 @@ int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
   const double bx = b.d[i] - a.d[i], by = b.d[j] - a.d[j];
   const double cx = c.d[i] - a.d[i], cy = c.d[j] - a.d[j];
   const double det = bx * cy - by * cx;
-  // The doubles are within one ulp of the rationals: bound the error by the
-  // magnitudes of the coordinates involved, generously.
-  const double mi = std::fabs(a.d[i]) + std::fabs(b.d[i]) + std::fabs(c.d[i]);
-  const double mj = std::fabs(a.d[j]) + std::fabs(b.d[j]) + std::fabs(c.d[j]);
-  const double bound = 1e-13 * mi * mj;
+  // The doubles are within one ulp of the rationals: each difference is off by at most
+  // e = 6.7e-16 m (m the largest coordinate), each product by e (|x| + |y|) + e^2, and
+  // the evaluation adds < 3.3e-16 (|bx cy| + |by cx|). Twice that, so the bound follows
+  // the triangle's size rather than its distance from the origin.
+  const double m = std::max({std::fabs(a.d[i]), std::fabs(b.d[i]), std::fabs(c.d[i]), std::fabs(a.d[j]),
+                             std::fabs(b.d[j]), std::fabs(c.d[j])});
+  const double e = 6.7e-16 * m;
+  const double bound = 2 * (e * (std::fabs(bx) + std::fabs(by) + std::fabs(cx) + std::fabs(cy)) + 2 * e * e +
+                            3.3e-16 * (std::fabs(bx * cy) + std::fabs(by * cx)));
   if (det > bound) return 1;
   if (det < -bound) return -1;
   return sign_of(orient2d_exact(a, b, c, i, j));
