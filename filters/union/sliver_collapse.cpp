@@ -48,6 +48,7 @@ public:
     double volume = 0;
     for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
     volume_budget_ = max_volume_change * std::fabs(volume);
+    budget_scale_ = std::fabs(volume);
     for (int f = 0; f < int(r.faces.size()); ++f)
       for (int v : r.faces[f]) vf_[v].push_back(f);
     V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
@@ -63,6 +64,7 @@ public:
   }
 
   int run(double threshold_rad);
+  void run_passes(double threshold_rad);
   void compact();
   /// Vertices that may neither move nor be removed, nor have their faces flipped.
   std::vector<char> frozen;
@@ -110,6 +112,7 @@ private:
   std::vector<int> line_degree_;
   double max_dev_ = 0;
   double volume_budget_ = 0;  // what the accepted moves may still change in total
+  double budget_scale_ = 0;   // |volume|
   double threshold_ = 0;      // sliver angle, radians
   static double det(const V3& a, const V3& b, const V3& c) { return dot(a, cross(b, c)); }
 
@@ -447,6 +450,19 @@ bool Collapser::compensate(int x, double dv6) {
 
 int Collapser::run(double threshold) {
   threshold_ = threshold;
+  // Two rounds: first only moves that give the volume back (a budget of rounding), so
+  // the budget is not spent on the worst slivers while cheaper fixes exist; then the rest.
+  const double budget = volume_budget_;
+  const double rounding = std::min(budget, 1e-12 * budget_scale_);
+  for (int round = 0; round < 2; ++round) {
+    if (round == 0) volume_budget_ = rounding;
+    else volume_budget_ = budget - (rounding - volume_budget_);
+    run_passes(threshold);
+  }
+  return collapses_;
+}
+
+void Collapser::run_passes(double threshold) {
   changed_.assign(r_.vertices.size(), 1);
   for (int pass = 0; pass < 10; ++pass) {
     // After the first pass only slivers whose neighbourhood changed can have new options.
@@ -495,7 +511,6 @@ int Collapser::run(double threshold) {
     }
     if (done == 0) break;
   }
-  return collapses_;
 }
 
 void Collapser::compact() {
