@@ -95,6 +95,8 @@ private:
   }
   // Reused by try_collapse (called for every candidate edge): no allocation per call.
   std::vector<int> scratch_fv_, scratch_fw_, scratch_nv_, scratch_nw_, scratch_fx_;
+  std::vector<int> ring_mark_;  // per vertex: the stamp of the last ring it was put in
+  int ring_stamp_ = 0;
 
   Result& r_;
   std::vector<char> alive_;
@@ -141,19 +143,26 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   for (int f : fv)
     if (std::find(r_.faces[f].begin(), r_.faces[f].end(), w) != r_.faces[f].end()) ++shared_faces;
   if (shared_faces != 2) return false;
-  std::vector<int>& nv = scratch_nv_;  // one-rings (sorted, unique)
+  std::vector<int>& nv = scratch_nv_;  // one-rings (unique; marked, no sorting)
   std::vector<int>& nw = scratch_nw_;
   nv.clear();
   nw.clear();
-  for (int f : fv) nv.insert(nv.end(), r_.faces[f].begin(), r_.faces[f].end());
-  for (int f : fw) nw.insert(nw.end(), r_.faces[f].begin(), r_.faces[f].end());
-  for (auto* n : {&nv, &nw}) {
-    std::sort(n->begin(), n->end());
-    n->erase(std::unique(n->begin(), n->end()), n->end());
-  }
+  if (ring_mark_.size() != r_.vertices.size()) ring_mark_.assign(r_.vertices.size(), 0);
+  const int in_w = ++ring_stamp_, in_v = ++ring_stamp_;
+  for (int f : fw)
+    for (int x : r_.faces[f])
+      if (ring_mark_[x] != in_w) {
+        ring_mark_[x] = in_w;
+        nw.push_back(x);
+      }
   int common = 0;
-  for (int x : nv)
-    if (x != v && x != w && std::binary_search(nw.begin(), nw.end(), x)) ++common;
+  for (int f : fv)
+    for (int x : r_.faces[f]) {
+      if (ring_mark_[x] == in_v) continue;
+      if (ring_mark_[x] == in_w && x != v && x != w) ++common;
+      ring_mark_[x] = in_v;
+      nv.push_back(x);
+    }
   if (common != 2) return false;
   // Target: w's position, moved along the volume gradient of the new star so that the
   // enclosed volume stays the same (Lindstrom-Turk); the move is tiny where the
