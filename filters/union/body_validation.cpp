@@ -16,7 +16,7 @@ std::string label(const Body& b, size_t index) {
 }
 
 bool degenerate(const Body& b, const std::array<int, 3>& f) {
-  const QPoint p = make_point(b.vertices[f[0]]), q = make_point(b.vertices[f[1]]), r = make_point(b.vertices[f[2]]);
+  const double *p = b.vertices[f[0]].data(), *q = b.vertices[f[1]].data(), *r = b.vertices[f[2]].data();
   return orient2d(p, q, r, 0, 1) == 0 && orient2d(p, q, r, 1, 2) == 0 && orient2d(p, q, r, 2, 0) == 0;
 }
 

@@ -14,27 +14,54 @@ int sign_of(const mpq_class& v) { return sgn(v); }
 
 }  // namespace
 
+QPoint::QPoint(const QPoint& o) : d(o.d), exact_double(o.exact_double), canonical_(o.canonical_) {
+  if (o.q_) q_ = std::make_unique<std::array<mpq_class, 3>>(*o.q_);
+}
+
+QPoint& QPoint::operator=(const QPoint& o) {
+  if (this != &o) *this = QPoint(o);
+  return *this;
+}
+
+const mpq_class& QPoint::q(int k) const {
+  if (!q_) q_ = std::make_unique<std::array<mpq_class, 3>>(std::array<mpq_class, 3>{mpq_class(d[0]), mpq_class(d[1]), mpq_class(d[2])});
+  if (!canonical_) {
+    for (auto& c : *q_) c.canonicalize();
+    canonical_ = true;
+  }
+  return (*q_)[k];
+}
+
 QPoint make_point(const std::array<double, 3>& p) {
   QPoint r;
-  for (int k = 0; k < 3; ++k) {
-    r.q[k] = p[k];  // exact: every double is a dyadic rational
-    r.d[k] = p[k];
-  }
+  r.d = p;  // exact: every double is a dyadic rational
+  r.exact_double = true;
   return r;
 }
 
 QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z) {
+  mpq_class a(x), b(y), c(z);
+  a.canonicalize();
+  b.canonicalize();
+  c.canonicalize();
+  return make_point_canonical(std::move(a), std::move(b), std::move(c));
+}
+
+QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z) {
   QPoint r;
-  r.q = {x, y, z};
-  for (int k = 0; k < 3; ++k) {
-    r.q[k].canonicalize();
-    r.d[k] = r.q[k].get_d();
-  }
+  r.q_ = std::make_unique<std::array<mpq_class, 3>>();
+  (*r.q_)[0] = std::move(x);
+  (*r.q_)[1] = std::move(y);
+  (*r.q_)[2] = std::move(z);
+  for (int k = 0; k < 3; ++k) r.d[k] = (*r.q_)[k].get_d();
   return r;
 }
 
 bool same_point(const QPoint& a, const QPoint& b) {
-  return a.q[0] == b.q[0] && a.q[1] == b.q[1] && a.q[2] == b.q[2];
+  // Truncation is monotone: different doubles, different rationals.
+  if (a.d != b.d) return false;
+  if (a.exact_double && b.exact_double) return true;
+  return a.q(0) == b.q(0) && a.q(1) == b.q(1) && a.q(2) == b.q(2);
 }
 
 mpq_class orient3d_exact(const double* a, const double* b, const double* c, const double* d) {
@@ -51,8 +78,13 @@ mpq_class orient3d_exact(const double* a, const double* b, const double* c, cons
 
 namespace {
 
+int scale_to_integers(const double* const* values, int n, mpz_class* out);
 /// Exact sign of det[b-a, c-a, d-a] with integers (all inputs scaled to one power of two).
 int orient3d_integer_sign(const double* a, const double* b, const double* c, const double* d);
+/// The same for det[b-a, c-a] on axes (i, j).
+int orient2d_integer_sign(const double* a, const double* b, const double* c, int i, int j);
+/// The same for perpendicular_dot_sign.
+int perpendicular_dot_integer_sign(const double* u, const double* w, const double* x, const double* y);
 
 }  // namespace
 
@@ -72,10 +104,15 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
   const double bound = 1e-14 * perm;
   if (det > bound) return 1;
   if (det < -bound) return -1;
+  // Two equal points (a corner tested against its own face): zero without integers.
+  auto same = [](const double* p, const double* q) { return p[0] == q[0] && p[1] == q[1] && p[2] == q[2]; };
+  if (same(d, a) || same(d, b) || same(d, c) || same(a, b) || same(a, c) || same(b, c)) return 0;
   return orient3d_integer_sign(a, b, c, d);
 }
 
 int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d) {
+  if (a.exact_double && b.exact_double && c.exact_double && d.exact_double)
+    return orient3d(a.d.data(), b.d.data(), c.d.data(), d.d.data());
   double m[3][3];
   double mag = 0;
   for (int k = 0; k < 3; ++k) {
@@ -87,16 +124,22 @@ int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d)
   const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
                      m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
   // The doubles are within one ulp of the rationals (relative 2.2e-16 of |coordinate|):
-  // each entry is off by at most ~4.4e-16 mag, so the determinant by at most
-  // 6 * 3 * 4.4e-16 * mag * (2 mag)^2 < 3.2e-14 mag^3; 1e-13 is generous.
-  const double bound = 1e-13 * mag * mag * mag;
+  // each entry (a rounded difference) is off by at most e = 6.7e-16 mag. With M the
+  // largest entry, each of the six products is then off by < 3 e M^2 + 3 e^2 M + e^3,
+  // and evaluating in doubles adds < 7.8e-16 times the permanent (< 6 M^3). Twice that:
+  // the bound follows the size of the tetrahedron, not its distance from the origin.
+  double M = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) M = std::max(M, std::fabs(m[r][k]));
+  const double err = 6.7e-16 * mag;
+  const double bound = 2 * (18 * err * M * M + 18 * err * err * M + 6 * err * err * err + 7.8e-16 * 6 * M * M * M);
   if (det > bound) return 1;
   if (det < -bound) return -1;
   mpq_class q[3][3];
   for (int k = 0; k < 3; ++k) {
-    q[0][k] = b.q[k] - a.q[k];
-    q[1][k] = c.q[k] - a.q[k];
-    q[2][k] = d.q[k] - a.q[k];
+    q[0][k] = b.q(k) - a.q(k);
+    q[1][k] = c.q(k) - a.q(k);
+    q[2][k] = d.q(k) - a.q(k);
   }
   const mpq_class e = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
                       q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
@@ -105,11 +148,44 @@ int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d)
 
 int perpendicular_dot_sign(const QPoint& u, const QPoint& w, const QPoint& x, const QPoint& y) {
   // (x-u).(y-u) |d|^2 - ((x-u).d)((y-u).d), d = w - u: |d|^2 times the perpendicular dot.
+  {
+    double d[3], a[3], b[3], mag = 0;
+    for (int k = 0; k < 3; ++k) {
+      d[k] = w.d[k] - u.d[k];
+      a[k] = x.d[k] - u.d[k];
+      b[k] = y.d[k] - u.d[k];
+      mag = std::max({mag, std::fabs(u.d[k]), std::fabs(w.d[k]), std::fabs(x.d[k]), std::fabs(y.d[k])});
+    }
+    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    const double ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+    const double bd = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
+    const double value = ab * dd - ad * bd;
+    // Each coordinate difference is off by at most e1 = 6.7e-16 mag (both doubles
+    // within one ulp, 2.2e-16 relative, of the rationals, plus the rounded subtraction),
+    // a vector by e = sqrt(3) e1 < 1.2e-15 mag. A dot product x.y is then off by e (|x| + |y|) + e^2 plus its own
+    // rounding (< 3.4e-16 |x| |y|); a product of two dots by the first times the other
+    // dot and vice versa, plus rounding. The bound doubles that sum: generous, and it
+    // scales with the features' size rather than with their distance from the origin.
+    const double e = 1.2e-15 * mag;
+    const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (1 + 1e-15);
+    const double lb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) * (1 + 1e-15);
+    const double ld = std::sqrt(dd) * (1 + 1e-15);
+    auto dot_err = [&](double lx, double ly) { return e * (lx + ly) + e * e + 3.4e-16 * lx * ly; };
+    const double e_ab = dot_err(la, lb), e_dd = dot_err(ld, ld), e_ad = dot_err(la, ld), e_bd = dot_err(lb, ld);
+    const double m_ab = la * lb + e_ab, m_dd = ld * ld + e_dd, m_ad = la * ld + e_ad, m_bd = lb * ld + e_bd;
+    const double err = m_ab * e_dd + m_dd * e_ab + m_ad * e_bd + m_bd * e_ad + 4.5e-16 * (m_ab * m_dd + m_ad * m_bd);
+    const double bound = 2 * err;
+    if (value > bound) return 1;
+    if (value < -bound) return -1;
+  }
+  if (u.exact_double && w.exact_double && x.exact_double && y.exact_double)
+    return perpendicular_dot_integer_sign(u.d.data(), w.d.data(), x.d.data(), y.d.data());
   mpq_class d[3], a[3], b[3];
   for (int k = 0; k < 3; ++k) {
-    d[k] = w.q[k] - u.q[k];
-    a[k] = x.q[k] - u.q[k];
-    b[k] = y.q[k] - u.q[k];
+    d[k] = w.q(k) - u.q(k);
+    a[k] = x.q(k) - u.q(k);
+    b[k] = y.q(k) - u.q(k);
   }
   const mpq_class dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   const mpq_class ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -119,18 +195,39 @@ int perpendicular_dot_sign(const QPoint& u, const QPoint& w, const QPoint& x, co
 }
 
 mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
-  return (b.q[i] - a.q[i]) * (c.q[j] - a.q[j]) - (b.q[j] - a.q[j]) * (c.q[i] - a.q[i]);
+  return (b.q(i) - a.q(i)) * (c.q(j) - a.q(j)) - (b.q(j) - a.q(j)) * (c.q(i) - a.q(i));
+}
+
+int orient2d(const double* a, const double* b, const double* c, int i, int j) {
+  const double bx = b[i] - a[i], by = b[j] - a[j];
+  const double cx = c[i] - a[i], cy = c[j] - a[j];
+  const double l = bx * cy, r = by * cx;
+  const double det = l - r;
+  // Shewchuk's bound for this evaluation is 3.3e-16 (|l| + |r|); 1e-15 is generous.
+  const double bound = 1e-15 * (std::fabs(l) + std::fabs(r));
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  // Collinear points on axis-parallel lines (common in CAD): exactly zero.
+  if ((a[i] == b[i] && a[i] == c[i]) || (a[j] == b[j] && a[j] == c[j])) return 0;
+  auto same = [&](const double* p, const double* q) { return p[i] == q[i] && p[j] == q[j]; };
+  if (same(a, b) || same(a, c) || same(b, c)) return 0;
+  return orient2d_integer_sign(a, b, c, i, j);
 }
 
 int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
+  if (a.exact_double && b.exact_double && c.exact_double) return orient2d(a.d.data(), b.d.data(), c.d.data(), i, j);
   const double bx = b.d[i] - a.d[i], by = b.d[j] - a.d[j];
   const double cx = c.d[i] - a.d[i], cy = c.d[j] - a.d[j];
   const double det = bx * cy - by * cx;
-  // The doubles are within one ulp of the rationals: bound the error by the
-  // magnitudes of the coordinates involved, generously.
-  const double mi = std::fabs(a.d[i]) + std::fabs(b.d[i]) + std::fabs(c.d[i]);
-  const double mj = std::fabs(a.d[j]) + std::fabs(b.d[j]) + std::fabs(c.d[j]);
-  const double bound = 1e-13 * mi * mj;
+  // The doubles are within one ulp of the rationals: each difference is off by at most
+  // e = 6.7e-16 m (m the largest coordinate), each product by e (|x| + |y|) + e^2, and
+  // the evaluation adds < 3.3e-16 (|bx cy| + |by cx|). Twice that, so the bound follows
+  // the triangle's size rather than its distance from the origin.
+  const double m = std::max({std::fabs(a.d[i]), std::fabs(b.d[i]), std::fabs(c.d[i]), std::fabs(a.d[j]),
+                             std::fabs(b.d[j]), std::fabs(c.d[j])});
+  const double e = 6.7e-16 * m;
+  const double bound = 2 * (e * (std::fabs(bx) + std::fabs(by) + std::fabs(cx) + std::fabs(cy)) + 2 * e * e +
+                            3.3e-16 * (std::fabs(bx * cy) + std::fabs(by * cx)));
   if (det > bound) return 1;
   if (det < -bound) return -1;
   return sign_of(orient2d_exact(a, b, c, i, j));
@@ -187,7 +284,45 @@ int orient3d_integer_sign(const double* a, const double* b, const double* c, con
   return sgn(det);
 }
 
+int orient2d_integer_sign(const double* a, const double* b, const double* c, int i, int j) {
+  const double* vals[6] = {&a[i], &a[j], &b[i], &b[j], &c[i], &c[j]};
+  thread_local mpz_class z[6];
+  thread_local mpz_class m[4];
+  scale_to_integers(vals, 6, z);
+  m[0] = z[2] - z[0];
+  m[1] = z[3] - z[1];
+  m[2] = z[4] - z[0];
+  m[3] = z[5] - z[1];
+  const mpz_class det = m[0] * m[3] - m[1] * m[2];
+  return sgn(det);
+}
+
+int perpendicular_dot_integer_sign(const double* u, const double* w, const double* x, const double* y) {
+  const double* vals[12];
+  for (int k = 0; k < 3; ++k) {
+    vals[k] = &u[k];
+    vals[3 + k] = &w[k];
+    vals[6 + k] = &x[k];
+    vals[9 + k] = &y[k];
+  }
+  thread_local mpz_class z[12];
+  thread_local mpz_class d[3], a[3], b[3];
+  scale_to_integers(vals, 12, z);
+  for (int k = 0; k < 3; ++k) {
+    d[k] = z[3 + k] - z[k];
+    a[k] = z[6 + k] - z[k];
+    b[k] = z[9 + k] - z[k];
+  }
+  const mpz_class dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const mpz_class ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const mpz_class ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+  const mpz_class bd = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
+  return sgn(mpz_class(ab * dd - ad * bd));
+}
+
 }  // namespace
+
+QPoint crossing_from_integers(const mpz_class& oa, const mpz_class& ob, const mpz_class* A, const mpz_class* B, int e);
 
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2) {
   const double* vals[15];
@@ -209,22 +344,57 @@ QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, c
     rb[k] = B[k] - F0[k];
   }
   const mpz_class n0 = u[1] * v[2] - u[2] * v[1], n1 = u[2] * v[0] - u[0] * v[2], n2 = u[0] * v[1] - u[1] * v[0];
-  const mpz_class oa = n0 * ra[0] + n1 * ra[1] + n2 * ra[2];
-  const mpz_class ob = n0 * rb[0] + n1 * rb[1] + n2 * rb[2];
-  mpz_class den = oa - ob;
-  mpq_class c[3];
+  mpz_class oa = n0 * ra[0] + n1 * ra[1] + n2 * ra[2];
+  mpz_class ob = n0 * rb[0] + n1 * rb[1] + n2 * rb[2];
+  return crossing_from_integers(oa, ob, A, B, e);
+}
+
+/// The point (oa B - ob A) / (oa - ob) 2^e, for integer points A, B, with its
+/// truncated doubles; the rationals stay unreduced until used (the gcd is the
+/// expensive part, and most crossings are never needed exactly).
+QPoint crossing_from_integers(const mpz_class& oa_in, const mpz_class& ob_in, const mpz_class* A, const mpz_class* B,
+                              int e) {
+  thread_local mpz_class oa, ob, den;
+  oa = oa_in;
+  ob = ob_in;
+  den = oa - ob;
+  if (sgn(den) < 0) {  // a positive denominator: the truncated doubles need no canonical form
+    den = -den;
+    oa = -oa;
+    ob = -ob;
+  }
+  QPoint r;
+  r.q_ = std::make_unique<std::array<mpq_class, 3>>();
   for (int k = 0; k < 3; ++k) {
-    mpz_class num = oa * B[k] - ob * A[k];
-    mpz_class d = den;
+    mpq_class& c = (*r.q_)[k];
+    mpz_class& num = c.get_num();
+    num = oa * B[k] - ob * A[k];
+    mpz_class& d = c.get_den();
+    d = den;
     if (e >= 0) num <<= e;
     else d <<= -e;
-    c[k] = mpq_class(num, d);
+    r.d[k] = c.get_d();
   }
-  return make_point(c[0], c[1], c[2]);  // canonicalizes
+  r.canonical_ = false;
+  return r;
+}
+
+QPoint segment_line_crossing(const double* a, const double* b, const double* c0, const double* c1, int i, int j) {
+  const double* vals[10] = {&a[0], &a[1], &a[2], &b[0], &b[1], &b[2], &c0[i], &c0[j], &c1[i], &c1[j]};
+  thread_local mpz_class z[10];
+  thread_local mpz_class ux, uy, oa, ob;
+  const int e = scale_to_integers(vals, 10, z);
+  const mpz_class *A = z, *B = z + 3;
+  ux = z[8] - z[6];
+  uy = z[9] - z[7];
+  // orient2d(c0, c1, x) = ux (x_j - c0_j) - uy (x_i - c0_i)
+  oa = ux * (A[j] - z[7]) - uy * (A[i] - z[6]);
+  ob = ux * (B[j] - z[7]) - uy * (B[i] - z[6]);
+  return crossing_from_integers(oa, ob, A, B, e);
 }
 
 QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t) {
-  return make_point(a.q[0] + t * (b.q[0] - a.q[0]), a.q[1] + t * (b.q[1] - a.q[1]), a.q[2] + t * (b.q[2] - a.q[2]));
+  return make_point_canonical(a.q(0) + t * (b.q(0) - a.q(0)), a.q(1) + t * (b.q(1) - a.q(1)), a.q(2) + t * (b.q(2) - a.q(2)));
 }
 
 Projection face_projection(const QPoint& qa, const QPoint& qb, const QPoint& qc) {
@@ -251,7 +421,8 @@ int compare(const QPoint& a, const QPoint& b, int axis) {
   // The doubles are the rationals truncated towards zero, a monotone map: different doubles decide.
   if (a.d[axis] < b.d[axis]) return -1;
   if (a.d[axis] > b.d[axis]) return 1;
-  return cmp(a.q[axis], b.q[axis]);
+  if (a.exact_double && b.exact_double) return 0;
+  return cmp(a.q(axis), b.q(axis));
 }
 
 }  // namespace mr::surface_union

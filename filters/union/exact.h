@@ -6,24 +6,55 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <memory>
 
 namespace mr::surface_union {
 
 /// A point with exact rational coordinates and their truncated (towards zero) double
-/// approximation (the same rational always gives the same doubles).
-struct QPoint {
-  std::array<mpq_class, 3> q;
+/// approximation (the same rational always gives the same doubles, and different
+/// doubles mean different rationals). The rationals are built on first use: input
+/// vertices are doubles and most predicates are decided by filters on the doubles.
+class QPoint {
+public:
   std::array<double, 3> d;
+  /// The doubles are the rationals exactly (input vertices): predicates on such points
+  /// run on the doubles with an integer fallback and build no rationals.
+  bool exact_double = false;
+
+  QPoint() = default;
+  QPoint(const QPoint& o);
+  QPoint& operator=(const QPoint& o);
+  QPoint(QPoint&&) noexcept = default;
+  QPoint& operator=(QPoint&&) noexcept = default;
+
+  /// Exact coordinate k (canonical).
+  const mpq_class& q(int k) const;
+
+private:
+  friend QPoint make_point(const std::array<double, 3>& p);
+  friend QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z);
+/// The same for coordinates already in canonical form (results of rational arithmetic).
+QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
+  friend QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
+  friend QPoint edge_plane_crossing(const double*, const double*, const double*, const double*, const double*);
+  friend QPoint crossing_from_integers(const mpz_class&, const mpz_class&, const mpz_class*, const mpz_class*, int);
+  mutable std::unique_ptr<std::array<mpq_class, 3>> q_;
+  mutable bool canonical_ = true;
 };
 
 QPoint make_point(const std::array<double, 3>& p);
 QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z);
+/// The same for coordinates already in canonical form (results of rational arithmetic).
+QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
 bool same_point(const QPoint& a, const QPoint& b);
 
 /// Sign of the signed volume of tetrahedron (a,b,c,d) for double inputs: +1 when d
 /// lies on the side of plane (a,b,c) its normal (b-a)x(c-a) points away from... i.e.
 /// the sign of det[b-a, c-a, d-a]. Exact.
 int orient3d(const double* a, const double* b, const double* c, const double* d);
+
+/// Sign of det[b-a, c-a] of the projections of double points on axes (i, j). Exact.
+int orient2d(const double* a, const double* b, const double* c, int i, int j);
 
 /// Sign of det[b-a, c-a, d-a] for rational points (filter on the doubles, exact fallback).
 int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d);
@@ -44,6 +75,10 @@ mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int 
 /// must lie strictly on opposite sides. Computed with integers (all inputs scaled to
 /// one power of two), so only the final coordinates are reduced.
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2);
+
+/// The point where segment (a, b) crosses the line (c0, c1) in the projection on axes
+/// (i, j), exactly; a and b must not both lie on the line. Integers as above.
+QPoint segment_line_crossing(const double* a, const double* b, const double* c0, const double* c1, int i, int j);
 
 /// a + t (b - a), exactly.
 QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t);

@@ -25,7 +25,11 @@ public:
 
 private:
   const QPoint& P(int local) const { return pts_[ids_[local]]; }
-  int orient(int a, int b, int c) const { return orient2d(P(a), P(b), P(c), pr_.i, pr_.j); }
+  int orient(int a, int b, int c) const {
+    // Edge crossings lie on their edge: no exact arithmetic needed to see it.
+    if (pts_.known_collinear(ids_[a], ids_[b], ids_[c])) return 0;
+    return orient2d(P(a), P(b), P(c), pr_.i, pr_.j);
+  }
   bool in_box(int p, int a, int b) const;
   bool between(int p, int a, int b) const;
   std::vector<std::array<int, 2>> split_at_points(const std::vector<std::array<int, 2>>& segs) const;
@@ -108,7 +112,9 @@ bool FaceTriangulator::add_crossings(const std::vector<std::array<int, 2>>& segs
       if (disjoint || !crosses(a, b, c, d)) continue;
       const mpq_class oa = orient2d_exact(P(c), P(d), P(a), pr_.i, pr_.j);
       const mpq_class ob = orient2d_exact(P(c), P(d), P(b), pr_.i, pr_.j);
-      const int id = pts_.insert(lerp(P(a), P(b), oa / (oa - ob)));
+      // The crossing lies on both segments: recorded, so splitting them needs no arithmetic.
+      const int id = pts_.insert_on_line(lerp(P(a), P(b), oa / (oa - ob)), ids_[a], ids_[b]);
+      pts_.mark_on_line(id, ids_[c], ids_[d]);
       if (!local_of_.count(id)) {
         local_of_[id] = int(ids_.size());
         ids_.push_back(id);

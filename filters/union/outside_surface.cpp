@@ -178,7 +178,7 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
   auto exact_normal = [&](int s, mpq_class* n) {
     const QPoint &a = points[sub[s][0]], &b = points[sub[s][1]], &c = points[sub[s][2]];
     mpq_class u[3], v[3];
-    for (int k = 0; k < 3; ++k) { u[k] = b.q[k] - a.q[k]; v[k] = c.q[k] - a.q[k]; }
+    for (int k = 0; k < 3; ++k) { u[k] = b.q(k) - a.q(k); v[k] = c.q(k) - a.q(k); }
     n[0] = u[1] * v[2] - u[2] * v[1];
     n[1] = u[2] * v[0] - u[0] * v[2];
     n[2] = u[0] * v[1] - u[1] * v[0];

@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "union/exact.h"
 
@@ -14,6 +15,9 @@ namespace {
 
 using V3 = std::array<double, 3>;
 constexpr double kPi = 3.14159265358979323846;
+// A star is smooth when every face normal is within ~45 degrees of the star's mean
+// normal (CAD creases of 90 degrees are not; sphere meshes and blobs are).
+constexpr double kSmoothStarCos = 0.7;
 
 V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -28,7 +32,12 @@ double angle(const V3& o, const V3& p, const V3& q) {
 }
 
 double face_min_angle(const V3& a, const V3& b, const V3& c) {
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+  // The smallest angle lies opposite the shortest side: one atan2 instead of three.
+  const V3 ab = sub3(b, a), bc = sub3(c, b), ca = sub3(a, c);
+  const double lab = dot(ab, ab), lbc = dot(bc, bc), lca = dot(ca, ca);
+  if (lab <= lbc && lab <= lca) return angle(c, a, b);
+  if (lbc <= lca) return angle(a, b, c);
+  return angle(b, c, a);
 }
 
 class Collapser {
@@ -39,6 +48,7 @@ public:
     double volume = 0;
     for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
     volume_budget_ = max_volume_change * std::fabs(volume);
+    budget_scale_ = std::fabs(volume);
     for (int f = 0; f < int(r.faces.size()); ++f)
       for (int v : r.faces[f]) vf_[v].push_back(f);
     V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
@@ -54,6 +64,7 @@ public:
   }
 
   int run(double threshold_rad);
+  void run_passes(double threshold_rad);
   void compact();
   /// Vertices that may neither move nor be removed, nor have their faces flipped.
   std::vector<char> frozen;
@@ -69,12 +80,23 @@ private:
   /// Moves v onto w if allowed; with `apply` false only checks, and `dv` gets the volume change.
   bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
   bool try_flip(int f, int z);      // flips side z of face f
-  std::vector<int> live_faces(int v) const {
-    std::vector<int> out;
+  /// Moves free vertex x (no line, not frozen) along the volume gradient of its star so
+  /// that the enclosed volume changes by -dv6 / 6, when no face flips or becomes (more
+  /// of) a sliver and the move stays within the deviation bound.
+  bool compensate(int x, double dv6);
+  /// Moves free vertex x towards the centroid of its ring, projected so that the volume
+  /// stays the same (perpendicular to its star's volume gradient), when that raises the
+  /// worst angle of its faces and flips none.
+  bool try_relocate(int x);
+  void live_faces(int v, std::vector<int>& out) const {
+    out.clear();
     for (int f : vf_[v])
       if (alive_[f]) out.push_back(f);
-    return out;
   }
+  // Reused by try_collapse (called for every candidate edge): no allocation per call.
+  std::vector<int> scratch_fv_, scratch_fw_, scratch_nv_, scratch_nw_, scratch_fx_;
+  std::vector<int> ring_mark_;  // per vertex: the stamp of the last ring it was put in
+  int ring_stamp_ = 0;
 
   Result& r_;
   std::vector<char> alive_;
@@ -82,10 +104,17 @@ private:
   std::vector<char> changed_;  // vertices whose neighbourhood changed in this pass
   std::vector<char> cut_;
   std::vector<std::vector<int>> vf_;
-  std::set<std::pair<int, int>> line_;
+  struct PairHash {
+    size_t operator()(const std::pair<int, int>& e) const {
+      const uint64_t h = (uint64_t(uint32_t(e.first)) << 32 | uint32_t(e.second)) * 0x9E3779B97F4A7C15ull;
+      return size_t(h ^ (h >> 29));
+    }
+  };
+  std::unordered_set<std::pair<int, int>, PairHash> line_;
   std::vector<int> line_degree_;
   double max_dev_ = 0;
   double volume_budget_ = 0;  // what the accepted moves may still change in total
+  double budget_scale_ = 0;   // |volume|
   double threshold_ = 0;      // sliver angle, radians
   static double det(const V3& a, const V3& b, const V3& c) { return dot(a, cross(b, c)); }
 
@@ -105,63 +134,127 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2.
   const bool vw_line = line_.count(ekey(v, w)) > 0;
   if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) return false;
-  const std::vector<int> fv = live_faces(v), fw = live_faces(w);
+  std::vector<int>& fv = scratch_fv_;
+  std::vector<int>& fw = scratch_fw_;
+  live_faces(v, fv);
+  live_faces(w, fw);
   // Link condition: v and w share exactly the two opposite vertices of their two faces.
   int shared_faces = 0;
   for (int f : fv)
     if (std::find(r_.faces[f].begin(), r_.faces[f].end(), w) != r_.faces[f].end()) ++shared_faces;
   if (shared_faces != 2) return false;
-  std::vector<int> nv, nw;  // one-rings (sorted, unique)
-  for (int f : fv) nv.insert(nv.end(), r_.faces[f].begin(), r_.faces[f].end());
-  for (int f : fw) nw.insert(nw.end(), r_.faces[f].begin(), r_.faces[f].end());
-  for (auto* n : {&nv, &nw}) {
-    std::sort(n->begin(), n->end());
-    n->erase(std::unique(n->begin(), n->end()), n->end());
-  }
+  std::vector<int>& nv = scratch_nv_;  // one-rings (unique; marked, no sorting)
+  std::vector<int>& nw = scratch_nw_;
+  nv.clear();
+  nw.clear();
+  if (ring_mark_.size() != r_.vertices.size()) ring_mark_.assign(r_.vertices.size(), 0);
+  const int in_w = ++ring_stamp_, in_v = ++ring_stamp_;
+  for (int f : fw)
+    for (int x : r_.faces[f])
+      if (ring_mark_[x] != in_w) {
+        ring_mark_[x] = in_w;
+        nw.push_back(x);
+      }
   int common = 0;
-  for (int x : nv)
-    if (x != v && x != w && std::binary_search(nw.begin(), nw.end(), x)) ++common;
+  for (int f : fv)
+    for (int x : r_.faces[f]) {
+      if (ring_mark_[x] == in_v) continue;
+      if (ring_mark_[x] == in_w && x != v && x != w) ++common;
+      ring_mark_[x] = in_v;
+      nv.push_back(x);
+    }
   if (common != 2) return false;
-  // Geometry: no flipped or degenerate face, bounded deviation, better worst angle.
-  double before = 1e300, after = 1e300;
-  int bad_before = 0, bad_after = 0;
-  for (int f : fv) {
-    const double a = min_angle(f);
-    before = std::min(before, a);
-    bad_before += a < threshold_;
+  // Target: w's position, moved along the volume gradient of the new star so that the
+  // enclosed volume stays the same (Lindstrom-Turk); the move is tiny where the
+  // surface is nearly flat. Coordinates relative to w keep the sums accurate. w stays
+  // put when it is frozen or on a line other than the one v slides along.
+  const bool w_free = !frozen[w] && (line_degree_[w] == 0 || (vw_line && line_degree_[w] == 2));
+  const V3 o = P(w);
+  auto rel = [&](int x) { return sub3(P(x), o); };
+  double s_old = 0;  // six times the old volume of the star (relative to o)
+  V3 g{0, 0, 0};     // six times the new volume is g . p (p relative to o)
+  for (int pass = 0; pass < 2; ++pass)
+    for (int f : pass == 0 ? fv : fw) {
+      const auto& t = r_.faces[f];
+      const bool has_v = std::find(t.begin(), t.end(), v) != t.end();
+      const bool has_w = std::find(t.begin(), t.end(), w) != t.end();
+      if (pass == 1 && has_v) continue;  // counted with v's faces
+      s_old += det(rel(t[0]), rel(t[1]), rel(t[2]));
+      if (has_v && has_w) continue;  // dies
+      for (int z = 0; z < 3; ++z)
+        if (t[z] == v || t[z] == w) {
+          const V3 bc = cross(rel(t[(z + 1) % 3]), rel(t[(z + 2) % 3]));
+          for (int k = 0; k < 3; ++k) g[k] += bc[k];
+        }
+    }
+  const double gg = dot(g, g);
+  // Checks one target p (relative to w): no flipped or degenerate face, bounded
+  // deviation, a better worst angle; gives six times the volume change.
+  auto acceptable = [&](const V3& p, double& dv) {
+    if (norm(p) > max_dev_) return false;
+    const bool moves_w = p[0] != 0 || p[1] != 0 || p[2] != 0;
+    const V3 target{o[0] + p[0], o[1] + p[1], o[2] + p[2]};
+    double before = 1e300, after = 1e300;
+    int bad_before = 0, bad_after = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+      if (pass == 1 && !moves_w) break;  // w's other faces keep their shape
+      for (int f : pass == 0 ? fv : fw) {
+        const auto& t = r_.faces[f];
+        const bool has_v = std::find(t.begin(), t.end(), v) != t.end();
+        const bool has_w = std::find(t.begin(), t.end(), w) != t.end();
+        if (pass == 1 && has_v) continue;
+        const double a0 = min_angle(f);
+        if (pass == 0) before = std::min(before, a0);
+        bad_before += a0 < threshold_;
+        if (has_v && has_w) continue;
+        V3 q[3];
+        for (int z = 0; z < 3; ++z) q[z] = t[z] == v || t[z] == w ? target : P(t[z]);
+        const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+        const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+        const double ln = norm(n_new), lo = norm(n_old);
+        if (!(ln > 0) || dot(n_old, n_new) <= 0.1 * lo * ln) return false;
+        if (std::fabs(dot(sub3(P(has_v ? v : w), q[0]), n_new)) / ln > max_dev_) return false;
+        const double a = face_min_angle(q[0], q[1], q[2]);
+        // A face the cut did not make is never turned into a sliver (nothing would treat it).
+        if (!cut_[f] && a < threshold_ && a < a0) return false;
+        after = std::min(after, a);
+        bad_after += a < threshold_;
+      }
+    }
+    // Better: a larger worst angle, or fewer slivers without making the worst one
+    // much worse (two neighbouring slivers often cannot both improve in one step).
+    if (!(after > before || (bad_after < bad_before && after >= 0.5 * before))) return false;
+    dv = dot(g, p) - s_old;
+    return true;
+  };
+  // First the volume-keeping target; if it is refused (a large move on a strongly
+  // curved star), w itself, with the volume given back by a neighbour or the budget.
+  V3 p{0, 0, 0};
+  double dv = 0;
+  bool ok = false;
+  if (w_free && gg > 0) {
+    for (int k = 0; k < 3; ++k) p[k] = s_old / gg * g[k];
+    ok = acceptable(p, dv);
   }
-  for (int f : fv) {
-    const auto& t = r_.faces[f];
-    if (std::find(t.begin(), t.end(), w) != t.end()) continue;
-    V3 q[3];
-    for (int z = 0; z < 3; ++z) q[z] = t[z] == v ? P(w) : P(t[z]);
-    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
-    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
-    const double ln = norm(n_new), lo = norm(n_old);
-    if (!(ln > 0) || dot(n_old, n_new) <= 0.1 * lo * ln) return false;
-    if (std::fabs(dot(sub3(P(v), q[0]), n_new)) / ln > max_dev_) return false;
-    const double a = face_min_angle(q[0], q[1], q[2]);
-    after = std::min(after, a);
-    bad_after += a < threshold_;
+  if (!ok) {
+    p = {0, 0, 0};
+    if (!acceptable(p, dv)) return false;
   }
-  // Better: a larger worst angle, or fewer slivers without making the worst one
-  // much worse (two neighbouring slivers often cannot both improve in one step).
-  if (!(after > before || (bad_after < bad_before && after >= 0.5 * before))) return false;
-  double dv = 0;  // six times the volume change
-  for (int f : fv) {
-    const auto& t = r_.faces[f];
-    dv -= det(P(t[0]), P(t[1]), P(t[2]));
-    if (std::find(t.begin(), t.end(), w) != t.end()) continue;
-    V3 q[3];
-    for (int z = 0; z < 3; ++z) q[z] = t[z] == v ? P(w) : P(t[z]);
-    dv += det(q[0], q[1], q[2]);
-  }
+  const V3 target{o[0] + p[0], o[1] + p[1], o[2] + p[2]};
+  const bool moved = p[0] != 0 || p[1] != 0 || p[2] != 0;
   if (std::fabs(dv) / 6 > volume_budget_) return false;
-  if (dv_out) *dv_out = std::fabs(dv) / 6;
+  // Score: the volume change plus the volume swept by the compensating move.
+  if (dv_out) *dv_out = std::fabs(dv) / 6 + norm(p) * std::sqrt(gg) / 6;
   if (!apply) return true;
+  const double budget_before = volume_budget_;
   volume_budget_ -= std::fabs(dv) / 6;
   for (int x : nv) changed_[x] = 1;
   for (int x : nw) changed_[x] = 1;
+  if (moved) {
+    r_.vertices[w] = target;
+    for (int f : fw) touched_[f] = 1;
+  }
+  const std::vector<int> link = nv;  // copies: compensate() reuses the scratch vectors
   for (int f : fv) {
     auto& t = r_.faces[f];
     touched_[f] = 1;
@@ -189,6 +282,13 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
     for (const auto& e : moved)
       if (line_.insert(e).second) { ++line_degree_[e.first]; ++line_degree_[e.second]; }
   }
+  // w could not take the compensating move: a free neighbour gives the volume back.
+  if (!moved && dv != 0)
+    for (int x : link)
+      if (x != v && x != w && compensate(x, dv)) {
+        volume_budget_ = budget_before;
+        break;
+      }
   return true;
 }
 
@@ -219,40 +319,175 @@ bool Collapser::try_flip(int f, int z) {
   const double before = std::min(min_angle(f), min_angle(g));
   const double after = std::min(face_min_angle(P(u), P(d), P(c)), face_min_angle(P(d), P(v), P(c)));
   if (!(after > before)) return false;
-  const double dv = std::fabs(det(P(u), P(d), P(c)) + det(P(d), P(v), P(c)) - det(P(u), P(v), P(c)) - det(P(v), P(u), P(d))) / 6;
-  if (dv > volume_budget_) return false;
-  volume_budget_ -= dv;
   if (frozen[d]) return false;
+  // Six times the volume change, relative to u for accuracy.
+  auto rel = [&](int x) { return sub3(P(x), P(u)); };
+  const double dv6 = det(rel(u), rel(d), rel(c)) + det(rel(d), rel(v), rel(c)) - det(rel(u), rel(v), rel(c)) -
+                     det(rel(v), rel(u), rel(d));
   r_.faces[f] = {u, d, c};
   r_.faces[g] = {d, v, c};
-  touched_[f] = touched_[g] = 1;
-  for (int x : {u, v, c, d})
-    for (int h : vf_[x])
-      if (alive_[h])
-        for (int y : r_.faces[h]) changed_[y] = 1;
   vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
   vf_[v].erase(std::remove(vf_[v].begin(), vf_[v].end(), f), vf_[v].end());
   vf_[c].push_back(g);
   vf_[d].push_back(f);
+  // Give the volume back by a small move of one free corner; else it is paid from the budget.
+  bool compensated = dv6 == 0;
+  for (int x : {c, d, u, v})
+    if (!compensated) compensated = compensate(x, dv6);
+  if (!compensated) {  // all four on lines or refused: a free vertex one ring further
+    std::vector<int> ring;
+    for (int x : {c, d})
+      for (int h : vf_[x])
+        if (alive_[h]) ring.insert(ring.end(), r_.faces[h].begin(), r_.faces[h].end());
+    for (int x : ring)
+      if (!compensated && x != u && x != v && x != c && x != d) compensated = compensate(x, dv6);
+  }
+  if (!compensated) {
+    if (std::fabs(dv6) / 6 > volume_budget_) {  // undo
+      vf_[c].pop_back();
+      vf_[d].pop_back();
+      vf_[u].push_back(g);
+      vf_[v].push_back(f);
+      r_.faces[f] = {u, v, c};
+      r_.faces[g] = {v, u, d};
+      return false;
+    }
+    volume_budget_ -= std::fabs(dv6) / 6;
+  }
+  touched_[f] = touched_[g] = 1;
+  cut_[f] = cut_[g] = cut_[f] || cut_[g];  // both new faces replace a cut face: treated on
+  for (int x : {u, v, c, d})
+    for (int h : vf_[x])
+      if (alive_[h])
+        for (int y : r_.faces[h]) changed_[y] = 1;
+  return true;
+}
+
+bool Collapser::try_relocate(int x) {
+  if (frozen[x] || line_degree_[x] > 0) return false;
+  std::vector<int>& fx = scratch_fx_;
+  live_faces(x, fx);
+  if (fx.empty()) return false;
+  const V3 o = P(x);
+  V3 g{0, 0, 0}, centroid{0, 0, 0};
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    for (int z = 0; z < 3; ++z)
+      if (t[z] == x) {
+        const V3 b = sub3(P(t[(z + 1) % 3]), o), c = sub3(P(t[(z + 2) % 3]), o);
+        const V3 bc = cross(b, c);
+        for (int k = 0; k < 3; ++k) {
+          g[k] += bc[k];
+          centroid[k] += (b[k] + c[k]) / (2.0 * double(fx.size()));
+        }
+      }
+  }
+  const double gg = dot(g, g);
+  if (!(gg > 0)) return false;
+  // Only on a smooth patch (no crease through x): there the slide barely moves the surface.
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    const V3 n = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    if (dot(n, g) < kSmoothStarCos * norm(n) * std::sqrt(gg)) return false;
+  }
+  V3 delta = centroid;
+  const double along = dot(g, delta) / gg;
+  for (int k = 0; k < 3; ++k) delta[k] -= along * g[k];  // g . delta = 0: same volume
+  const double len = norm(delta);
+  if (!(len > 0)) return false;
+  if (len > max_dev_)
+    for (double& d : delta) d *= max_dev_ / len;
+  const V3 moved{o[0] + delta[0], o[1] + delta[1], o[2] + delta[2]};
+  double before = 1e300, after = 1e300;
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    V3 q[3];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? moved : P(t[z]);
+    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+    if (!(norm(n_new) > 0) || dot(n_old, n_new) <= 0.1 * norm(n_old) * norm(n_new)) return false;
+    const double a = face_min_angle(q[0], q[1], q[2]);
+    if (!cut_[f] && a < threshold_ && a < min_angle(f)) return false;
+    before = std::min(before, min_angle(f));
+    after = std::min(after, a);
+  }
+  if (!(after > before)) return false;
+  r_.vertices[x] = moved;
+  for (int f : fx) {
+    touched_[f] = 1;
+    for (int y : r_.faces[f]) changed_[y] = 1;
+  }
+  return true;
+}
+
+bool Collapser::compensate(int x, double dv6) {
+  if (frozen[x] || line_degree_[x] > 0) return false;
+  std::vector<int>& fx = scratch_fx_;
+  live_faces(x, fx);
+  const V3 o = P(x);
+  V3 g{0, 0, 0};  // six times the volume change is g . delta
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    for (int z = 0; z < 3; ++z)
+      if (t[z] == x) {
+        const V3 bc = cross(sub3(P(t[(z + 1) % 3]), o), sub3(P(t[(z + 2) % 3]), o));
+        for (int k = 0; k < 3; ++k) g[k] += bc[k];
+      }
+  }
+  const double gg = dot(g, g);
+  if (!(gg > 0)) return false;
+  V3 delta;
+  for (int k = 0; k < 3; ++k) delta[k] = -dv6 / gg * g[k];
+  if (norm(delta) > max_dev_) return false;
+  const V3 moved{o[0] + delta[0], o[1] + delta[1], o[2] + delta[2]};
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    V3 q[3];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? moved : P(t[z]);
+    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+    if (!(norm(n_new) > 0) || dot(n_old, n_new) <= 0.1 * norm(n_old) * norm(n_new)) return false;
+    if (face_min_angle(q[0], q[1], q[2]) < std::min(min_angle(f), threshold_)) return false;
+  }
+  r_.vertices[x] = moved;
+  for (int f : fx) {
+    touched_[f] = 1;
+    for (int y : r_.faces[f]) changed_[y] = 1;
+  }
   return true;
 }
 
 int Collapser::run(double threshold) {
   threshold_ = threshold;
+  // Two rounds: first only moves that give the volume back (a budget of rounding), so
+  // the budget is not spent on the worst slivers while cheaper fixes exist; then the rest.
+  const double budget = volume_budget_;
+  const double rounding = std::min(budget, 1e-12 * budget_scale_);
+  for (int round = 0; round < 2; ++round) {
+    if (round == 0) volume_budget_ = rounding;
+    else volume_budget_ = budget - (rounding - volume_budget_);
+    run_passes(threshold);
+  }
+  return collapses_;
+}
+
+void Collapser::run_passes(double threshold) {
   changed_.assign(r_.vertices.size(), 1);
   for (int pass = 0; pass < 10; ++pass) {
+    // After the first pass only slivers whose neighbourhood changed can have new options.
+    std::vector<char> changed;
+    changed.swap(changed_);
+    changed_.assign(r_.vertices.size(), 0);
     std::vector<std::pair<double, int>> bad;
     for (int f = 0; f < int(r_.faces.size()); ++f)
       if (alive_[f] && cut_[f]) {
+        const auto& t = r_.faces[f];
+        if (pass > 0 && !changed[t[0]] && !changed[t[1]] && !changed[t[2]]) continue;
         const double a = min_angle(f);
         if (a < threshold) bad.push_back({a, f});
       }
     std::sort(bad.begin(), bad.end());
     int done = 0;
-    // After the first pass only slivers whose neighbourhood changed can have new options.
-    std::vector<char> changed;
-    changed.swap(changed_);
-    changed_.assign(r_.vertices.size(), 0);
     for (const auto& [a0, f] : bad) {
       if (!alive_[f] || min_angle(f) >= threshold) continue;
       const auto t = r_.faces[f];
@@ -279,10 +514,12 @@ int Collapser::run(double threshold) {
       // Otherwise a flip of any side may reshape the neighbourhood for a later pass.
       for (int k = 2; k >= 0 && !ok; --k)
         if (try_flip(f, edges[k].second)) { ++done; ++flips_; ok = true; }
+      // Or a corner slides towards the middle of its ring, within the surface.
+      for (int z = 0; z < 3 && !ok; ++z)
+        if (try_relocate(t[z])) { ++done; ok = true; }
     }
     if (done == 0) break;
   }
-  return collapses_;
 }
 
 void Collapser::compact() {
@@ -332,14 +569,8 @@ bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, 
     for (int t = 1; t < 3; ++t)
       if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
     const Projection pr{(k + 1) % 3, (k + 2) % 3};
-    // Doubles are exact inputs: a filtered 2D orientation with an exact fallback.
-    auto o = [&](const V3& x, const V3& y, const V3& z) {
-      const double det = (y[pr.i] - x[pr.i]) * (z[pr.j] - x[pr.j]) - (y[pr.j] - x[pr.j]) * (z[pr.i] - x[pr.i]);
-      const double perm = std::fabs((y[pr.i] - x[pr.i]) * (z[pr.j] - x[pr.j])) + std::fabs((y[pr.j] - x[pr.j]) * (z[pr.i] - x[pr.i]));
-      if (det > 1e-14 * perm) return 1;
-      if (det < -1e-14 * perm) return -1;
-      return orient2d(make_point(x), make_point(y), make_point(z), pr.i, pr.j);
-    };
+    // Doubles are exact inputs: the filtered 2D orientation with an integer fallback.
+    auto o = [&](const V3& x, const V3& y, const V3& z) { return orient2d(x.data(), y.data(), z.data(), pr.i, pr.j); };
     const int sign = o(a, b, c);  // orientation of the triangle in this projection
     const V3 &P = p, &Q = q, &A = a, &B = b, &C = c;
     auto inside = [&](const V3& x) { return sign * o(A, B, x) >= 0 && sign * o(B, C, x) >= 0 && sign * o(C, A, x) >= 0; };
@@ -366,6 +597,34 @@ bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, 
   return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
 }
 
+/// Coplanar faces F and G are separated by one of their edge lines: the other face lies
+/// strictly on its outer side but for corners shared with that edge, so they meet at
+/// most in shared corners. A cheap exact rejection before the closed segment tests.
+bool coplanar_separated(const std::vector<V3>& V, const std::array<int, 3>& F, const std::array<int, 3>& G) {
+  const V3 n = cross(sub3(V[F[1]], V[F[0]]), sub3(V[F[2]], V[F[0]]));
+  int k = 0;
+  for (int t = 1; t < 3; ++t)
+    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  auto o = [&](int x, int y, int z) { return orient2d(V[x].data(), V[y].data(), V[z].data(), i, j); };
+  for (int side = 0; side < 2; ++side) {
+    const auto& A = side == 0 ? F : G;
+    const auto& B = side == 0 ? G : F;
+    const int sa = o(A[0], A[1], A[2]);
+    for (int z = 0; z < 3; ++z) {
+      const int a0 = A[z], a1 = A[(z + 1) % 3];
+      bool separated = true;
+      for (int m = 0; m < 3 && separated; ++m) {
+        const int b = B[m];
+        if (V[b] == V[a0] || V[b] == V[a1]) continue;  // a shared corner on this edge
+        separated = sa * o(a0, a1, b) < 0;
+      }
+      if (separated) return true;
+    }
+  }
+  return false;
+}
+
 /// Faces f and g (of one mesh) intersect other than along what they share.
 bool faces_meet(const Result& r, int f, int g) {
   const auto &F = r.faces[f], &G = r.faces[g];
@@ -376,6 +635,27 @@ bool faces_meet(const Result& r, int f, int g) {
       if (F[i] == G[j] || r.vertices[F[i]] == r.vertices[G[j]]) { ++shared; sf = i; sg = j; }
   if (shared >= 2) return false;  // neighbours across an edge
   const auto& V = r.vertices;
+  // Separating planes: a face strictly on one side of the other's plane (but for a
+  // shared corner) cannot meet it. Coplanar pairs go to the tests below.
+  for (int k = 0; k < 2; ++k) {
+    const auto& A = k == 0 ? F : G;
+    const auto& B = k == 0 ? G : F;
+    int pos = 0, neg = 0, zero = 0;
+    for (int i = 0; i < 3; ++i) {
+      const int o = orient3d(V[A[0]].data(), V[A[1]].data(), V[A[2]].data(), V[B[i]].data());
+      pos += o > 0;
+      neg += o < 0;
+      zero += o == 0;
+    }
+    if (zero == 3) {
+      if (coplanar_separated(V, F, G)) return false;
+      break;
+    }
+    if (pos + shared == 3 || neg + shared == 3) {
+      // All but the shared corner strictly on one side (the shared corner has o == 0).
+      if (shared == 0 || zero == 1) return false;
+    }
+  }
   if (shared == 1) {  // only the edges opposite the shared corner can cross the other face
     return segment_meets_triangle(V[F[(sf + 1) % 3]], V[F[(sf + 2) % 3]], V[G[0]], V[G[1]], V[G[2]]) ||
            segment_meets_triangle(V[G[(sg + 1) % 3]], V[G[(sg + 2) % 3]], V[F[0]], V[F[1]], V[F[2]]);
@@ -417,19 +697,34 @@ std::vector<int> new_intersections(const Collapser& c) {
   const double cell = std::max({2 * sizes[sizes.size() / 2], extent / 200, 1e-300});
   auto cell_of = [&](double x, int k) { return int64_t(std::floor((x - all_lo[k]) / cell)); };
   auto key = [](int64_t i, int64_t j, int64_t k) { return (i * 73856093) ^ (j * 19349663) ^ (k * 83492791); };
+  // Only cells that a touched face covers are ever looked at: the others stay empty.
   std::unordered_map<int64_t, std::vector<int>> grid;
+  for (int f : touched) {
+    V3 lo, hi;
+    box(f, lo, hi);
+    for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0); ++i)
+      for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1); ++j)
+        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) grid[key(i, j, k)];
+  }
   for (int f = 0; f < int(r.faces.size()); ++f) {
     if (!c.alive(f)) continue;
     V3 lo, hi;
     box(f, lo, hi);
     for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0); ++i)
       for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1); ++j)
-        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) grid[key(i, j, k)].push_back(f);
+        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) {
+          auto it = grid.find(key(i, j, k));
+          if (it != grid.end()) it->second.push_back(f);
+        }
   }
+  std::vector<int> seen(r.faces.size(), 0);
+  std::vector<char> is_touched(r.faces.size(), 0);
+  for (int f : touched) is_touched[f] = 1;
+  int stamp = 0;
   for (int f : touched) {
     V3 lo, hi;
     box(f, lo, hi);
-    std::set<int> seen;
+    ++stamp;
     bool hit = false;
     for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0) && !hit; ++i)
       for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1) && !hit; ++j)
@@ -437,12 +732,18 @@ std::vector<int> new_intersections(const Collapser& c) {
           auto it = grid.find(key(i, j, k));
           if (it == grid.end()) continue;
           for (int g : it->second) {
-            if (g == f || !seen.insert(g).second) continue;
+            // A pair of touched faces is checked once, from the lower index.
+            if (g == f || seen[g] == stamp || (is_touched[g] && g < f)) continue;
+            seen[g] = stamp;
             V3 glo, ghi;
             box(g, glo, ghi);
             bool apart = false;
             for (int a = 0; a < 3; ++a) apart |= ghi[a] < lo[a] || hi[a] < glo[a];
-            if (!apart && faces_meet(r, f, g)) { hit = true; break; }
+            if (!apart && faces_meet(r, f, g)) {
+              hit = true;
+              if (is_touched[g]) bad.push_back(g);  // its own check skipped this pair
+              break;
+            }
           }
         }
     if (hit) bad.push_back(f);

@@ -103,6 +103,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
     }
   }
   PointTable pts;
+  pts.reserve(soup.vertex.size() + soup.face.size() / 4);
   std::vector<int> vertex_point(soup.vertex.size());
   for (size_t v = 0; v < soup.vertex.size(); ++v) vertex_point[v] = pts.insert(make_point(soup.vertex[v]));
   const int input_points = pts.size();
@@ -153,8 +154,8 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
       if (it != cf.end() && !it->second.coplanar.empty()) {
         const Projection pr = face_projection(pts[corners[0]], pts[corners[1]], pts[corners[2]]);
         const QPoint &a = pts[sub[s][0]], &b = pts[sub[s][1]], &c = pts[sub[s][2]];
-        const QPoint centroid = make_point((a.q[0] + b.q[0] + c.q[0]) / 3, (a.q[1] + b.q[1] + c.q[1]) / 3,
-                                           (a.q[2] + b.q[2] + c.q[2]) / 3);
+        const QPoint centroid = make_point((a.q(0) + b.q(0) + c.q(0)) / 3, (a.q(1) + b.q(1) + c.q(1)) / 3,
+                                           (a.q(2) + b.q(2) + c.q(2)) / 3);
         for (int g : it->second.coplanar) {
           if (!strictly_inside(pts, vertex_point, soup, g, centroid, pr)) continue;
           const auto& G = soup.face[g];

@@ -29,7 +29,7 @@ struct Params {
   /// the surface; collapses on curved parts that would change the shape more are skipped.
   double sliver_max_deviation = 1e-3;
   /// Bound on the total volume change of all sliver moves, relative to the volume.
-  double sliver_max_volume_change = 1e-4;
+  double sliver_max_volume_change = 1e-6;
 };
 
 struct Result {

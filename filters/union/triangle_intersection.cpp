@@ -14,7 +14,8 @@ int PairIntersector::edge_plane_point(int a, int b, int face) {
   auto it = edge_face_cache_.find(key);
   if (it != edge_face_cache_.end()) return it->second;
   const auto& F = soup_.face[face];
-  int id = points_.insert(edge_plane_crossing(vp(a), vp(b), vp(F[0]), vp(F[1]), vp(F[2])));
+  int id = points_.insert_on_line(edge_plane_crossing(vp(a), vp(b), vp(F[0]), vp(F[1]), vp(F[2])), vertex_point_[a],
+                                  vertex_point_[b]);
   edge_face_cache_.emplace(key, id);
   return id;
 }
@@ -160,51 +161,65 @@ namespace {
 
 }  // namespace
 
+int PairIntersector::edge_edge_point(int a, int b, int c, int d, const Projection& pr) {
+  // The crossing of two coplanar lines is one point whatever the projection or the
+  // order: the key is the unordered pair of undirected edges.
+  if (a > b) std::swap(a, b);
+  if (c > d) std::swap(c, d);
+  EEKey key = a < c || (a == c && b < d) ? EEKey{a, b, c, d} : EEKey{c, d, a, b};
+  auto it = edge_edge_cache_.find(key);
+  if (it != edge_edge_cache_.end()) return it->second;
+  const int id = points_.insert_on_line(segment_line_crossing(vp(a), vp(b), vp(c), vp(d), pr.i, pr.j),
+                                        vertex_point_[a], vertex_point_[b]);
+  points_.mark_on_line(id, vertex_point_[c], vertex_point_[d]);
+  edge_edge_cache_.emplace(key, id);
+  return id;
+}
+
 bool PairIntersector::coplanar(int f, int g, std::unordered_map<int, FaceConstraints>& cf) {
   const auto& T = soup_.face[f];
   const auto& X = soup_.face[g];
-  // Copies: inserting new points may move the table's storage.
-  const QPoint pt[3] = {points_[vertex_point_[T[0]]], points_[vertex_point_[T[1]]], points_[vertex_point_[T[2]]]};
-  const QPoint px[3] = {points_[vertex_point_[X[0]]], points_[vertex_point_[X[1]]], points_[vertex_point_[X[2]]]};
-  const QPoint* qt[3] = {&pt[0], &pt[1], &pt[2]};
-  const QPoint* qx[3] = {&px[0], &px[1], &px[2]};
-  const Projection pr = face_projection(*qt[0], *qt[1], *qt[2]);
-  const int sign_x = orient2d(*qx[0], *qx[1], *qx[2], pr.i, pr.j);
+  // Input vertices only: all predicates run on the doubles (exact with the integer
+  // fallback) and the clip points are built with integers, no rational parameter.
+  const Projection pr = face_projection(points_[vertex_point_[T[0]]], points_[vertex_point_[T[1]]],
+                                        points_[vertex_point_[T[2]]]);
+  const int sign_x = orient2d(vp(X[0]), vp(X[1]), vp(X[2]), pr.i, pr.j);
   if (sign_x == 0) return false;  // degenerate face, rejected earlier
   // Clips segment (a, b) against triangle C (orientation sc); appends the part inside.
-  auto clip = [&](int va, int vb, const QPoint* const C[3], int sc, FaceConstraints& out) {
-    const QPoint a = points_[vertex_point_[va]];
-    const QPoint b = points_[vertex_point_[vb]];
-    mpq_class t0 = 0, t1 = 1;
-    bool moved0 = false, moved1 = false;
+  auto clip = [&](int va, int vb, const std::array<int, 3>& C, int sc, FaceConstraints& out) {
+    const double* a = vp(va);
+    const double* b = vp(vb);
+    // Points on the segment are ordered by their coordinate along its longest axis.
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::fabs(b[k] - a[k]) > std::fabs(b[axis] - a[axis])) axis = k;
+    const int dir = b[axis] > a[axis] ? 1 : -1;
+    int enter = -1, leave = -1;  // point ids of the clip points
     for (int e = 0; e < 3; ++e) {
-      const QPoint& c0 = *C[e];
-      const QPoint& c1 = *C[(e + 1) % 3];
+      const double* c0 = vp(C[e]);
+      const double* c1 = vp(C[(e + 1) % 3]);
       const int sa = sc * orient2d(c0, c1, a, pr.i, pr.j);
       const int sb = sc * orient2d(c0, c1, b, pr.i, pr.j);
       if (sa < 0 && sb < 0) return false;
       if (sa >= 0 && sb >= 0) continue;
-      const mpq_class fa = orient2d_exact(c0, c1, a, pr.i, pr.j);
-      const mpq_class fb = orient2d_exact(c0, c1, b, pr.i, pr.j);
-      mpq_class t = fa / (fa - fb);
-      if (sa < 0) {
-        if (t > t0) { t0 = t; moved0 = true; }
-      } else if (t < t1) {
-        t1 = t;
-        moved1 = true;
+      const int x = edge_edge_point(va, vb, C[e], C[(e + 1) % 3], pr);
+      if (sa < 0) {  // entering: the last entry counts
+        if (enter < 0 || dir * compare(points_[x], points_[enter], axis) > 0) enter = x;
+      } else if (leave < 0 || dir * compare(points_[x], points_[leave], axis) < 0) {  // leaving: the first exit counts
+        leave = x;
       }
     }
-    if (t0 > t1) return false;
-    const int p = moved0 ? points_.insert(lerp(a, b, t0)) : vertex_point_[va];
-    const int q = moved1 ? points_.insert(lerp(a, b, t1)) : vertex_point_[vb];
+    if (enter >= 0 && leave >= 0 && dir * compare(points_[enter], points_[leave], axis) > 0) return false;
+    const int p = enter >= 0 ? enter : vertex_point_[va];
+    const int q = leave >= 0 ? leave : vertex_point_[vb];
     add_result(out, p, q);
     return true;
   };
   bool any = false;
   FaceConstraints& cft = cf[f];
   FaceConstraints& cfg = cf[g];
-  for (int e = 0; e < 3; ++e) any |= clip(X[e], X[(e + 1) % 3], qt, 1, cft);
-  for (int e = 0; e < 3; ++e) any |= clip(T[e], T[(e + 1) % 3], qx, sign_x, cfg);
+  for (int e = 0; e < 3; ++e) any |= clip(X[e], X[(e + 1) % 3], T, 1, cft);
+  for (int e = 0; e < 3; ++e) any |= clip(T[e], T[(e + 1) % 3], X, sign_x, cfg);
   if (any) {
     cft.coplanar.push_back(g);
     cfg.coplanar.push_back(f);

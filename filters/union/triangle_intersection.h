@@ -47,6 +47,21 @@ private:
     }
   };
   std::unordered_map<EFKey, int, EFHash> edge_face_cache_;
+  /// The crossing of coplanar input edges (a, b) and (c, d), built once (neighbouring
+  /// face pairs meet the same edge crossings again).
+  int edge_edge_point(int a, int b, int c, int d, const Projection& pr);
+  struct EEKey {
+    int a, b, c, d;
+    bool operator==(const EEKey& o) const { return a == o.a && b == o.b && c == o.c && d == o.d; }
+  };
+  struct EEHash {
+    size_t operator()(const EEKey& k) const {
+      uint64_t h = (uint64_t(uint32_t(k.a)) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(uint32_t(k.b)) * 0xC2B2AE3D27D4EB4Full) ^
+                   (uint64_t(uint32_t(k.c)) * 0x165667B19E3779F9ull) ^ (uint64_t(uint32_t(k.d)) * 0x27D4EB2F165667C5ull);
+      return size_t(h ^ (h >> 31));
+    }
+  };
+  std::unordered_map<EEKey, int, EEHash> edge_edge_cache_;
 };
 
 }  // namespace mr::surface_union

@@ -69,8 +69,9 @@ RichParameterList FilterSurfaceUnionPlugin::initParameterList(const QAction*, co
                           "diagonal (collapses on curved parts that would move it more are skipped)."));
   list.addParam(RichFloat("sliver_max_volume_change", defaults.sliver_max_volume_change,
                           "Sliver collapse volume change",
-                          "Bound on the total volume change of all sliver collapses and flips, as a fraction of "
-                          "the volume of the union (0 allows only moves that keep the volume exactly)."));
+                          "Bound on the volume change of the sliver step that its moves could not give back "
+                          "(collapses, flips and relocations move a nearby vertex to keep the volume), as a "
+                          "fraction of the volume of the union."));
   list.addParam(RichBool("create_lines_layer", false, "Create a layer with the intersection lines",
                          "Add a new layer holding the intersection lines as an edge mesh (polylines)."));
   return list;

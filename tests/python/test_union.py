@@ -19,8 +19,10 @@ manifold3d = pytest.importorskip("manifold3d")
 LAYERS, COMPONENTS = 0, 1
 # Without the sliver step the union is the exact arrangement rounded to doubles.
 EXACT_VOLUME_RTOL = 1e-9
-# The sliver step changes the volume by at most sliver_max_volume_change (default 1e-4).
-IMPROVED_VOLUME_RTOL = 1e-4
+# The sliver step changes the volume by at most sliver_max_volume_change (default 1e-6);
+# its moves give the volume back, so it is mostly far below that (measured 7e-16 balls,
+# 9e-16 rabbit, 4e-15 ten spheres; box.STL -1.0e-6, at the budget).
+IMPROVED_VOLUME_RTOL = 1e-6
 
 
 def reference(meshes):
@@ -202,7 +204,8 @@ def test_enclosed_cavity_is_filled():
 
 def test_sliver_step_reaches_the_input_minimum_angle_on_the_balls():
     # The balls' own triangles have a smallest angle of 5.48 deg; the raw cut has 119
-    # faces under 5 deg (down to 0.04 deg). After the default sliver step: none.
+    # faces under 5 deg (down to 0.04 deg). After the default sliver step: none (5.48 deg
+    # measured), with the volume within 1e-6 of manifold3d's (test_balls).
     ms = load("multicomponent/ballA.off")
     ms.load_new_mesh(str(shared_mesh("multicomponent/ballB.off")))
     input_min = min(angles(ms.mesh(i)).min() for i in range(2))
@@ -394,6 +397,7 @@ def test_cli_union_components_of_one_file(tmp_path):
 
 def test_sliver_step_on_a_ten_sphere_cluster_leaves_no_face_under_5_degrees():
     # Icospheres (smallest angle 54 deg); the raw cut has about 400 faces under 5 deg.
+    # Measured after the default sliver step: smallest angle 10.0 deg, volume 4e-15.
     ms = pymeshlab.MeshSet()
     ms.create_sphere(radius=0.5, subdiv=3)
     v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
@@ -496,3 +500,22 @@ def test_bug_start_face_chosen_from_rounded_normals_at_a_shared_pole():
     # cross (docs/union.md, "Limits"). The sliver step, whose moves are checked exactly,
     # is not asked to repair that.
     assert self_intersecting_faces(ms.current_mesh()) <= 8  # (MeshLab's flags vary by run)
+
+
+def test_sliver_step_on_a_coarse_fifty_sphere_cluster_keeps_the_volume():
+    # 50 icospheres of 320 triangles (smallest angle 54 deg), the benchmark's seed. The raw
+    # cut has about 1400 faces under 5 deg. Measured after the default sliver step: 4 faces
+    # under 5 deg left (smallest 1.9 deg), volume -2.2e-7. Asserted: the budget holds and
+    # almost all slivers are gone.
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(radius=0.5, subdiv=2)
+    v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
+    centres = np.random.default_rng(1).random((50, 3)) * 50 ** (1 / 3) * 0.9
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(np.concatenate([v + c for c in centres]),
+                               np.concatenate([f + i * len(v) for i in range(50)])))
+    parts = [pymeshlab.Mesh(v + c, f) for c in centres]
+    ref = reference(parts)
+    unite(ms, bodies=COMPONENTS)
+    assert check_union(ms, 1) == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL * 1.01)
+    assert (angles(ms.mesh(1)).min(1) < 5.0).sum() <= 10

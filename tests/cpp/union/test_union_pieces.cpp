@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace mr::surface_union;
 
 TEST(UnionExact, Orient3dIsExactOnNearlyCoplanarPoints) {
@@ -32,6 +34,50 @@ TEST(UnionExact, PointTableSharesEqualRationals) {
   EXPECT_EQ(a, b);
   EXPECT_NE(a, c);
   EXPECT_EQ(t.size(), 2);
+}
+
+TEST(UnionExact, Orient2dOnDoublesIsExactOnNearlyCollinearPoints) {
+  // Three points on the line y = x / 3 as closely as doubles allow: the filter cannot
+  // decide, the integer fallback must agree with rational arithmetic.
+  const double a[3] = {0.1, 0.1 / 3, 0}, b[3] = {0.7, 0.7 / 3, 0}, c[3] = {1.3, 1.3 / 3, 0};
+  const int s = orient2d(a, b, c, 0, 1);
+  EXPECT_EQ(s, sgn(orient2d_exact(make_point({a[0], a[1], a[2]}), make_point({b[0], b[1], b[2]}),
+                                  make_point({c[0], c[1], c[2]}), 0, 1)));
+  const double p[3] = {0.25, 0.5, 0}, q[3] = {0.75, 1.5, 0}, r[3] = {1.0, 2.0, 0};  // exactly collinear
+  EXPECT_EQ(orient2d(p, q, r, 0, 1), 0);
+  const double up[3] = {1.0, std::nextafter(2.0, 3.0), 0};
+  EXPECT_EQ(orient2d(p, q, up, 0, 1), 1);
+}
+
+TEST(UnionExact, CrossingsAreExactAndEqualToTheReducedRational) {
+  // Edge (a, b) crosses plane z = 1/3 (through three points): the lazily reduced point
+  // equals the point built from rationals, and a second construction finds it in the table.
+  const double a[3] = {0.1, 0.2, 0}, b[3] = {0.9, 0.4, 1};
+  const double f0[3] = {0, 0, 1.0 / 3}, f1[3] = {1, 0, 1.0 / 3}, f2[3] = {0, 1, 1.0 / 3};
+  const QPoint x = edge_plane_crossing(a, b, f0, f1, f2);
+  const mpq_class t = mpq_class(1.0 / 3);  // z of the plane; z(a) = 0, z(b) = 1
+  const QPoint y = lerp(make_point({a[0], a[1], a[2]}), make_point({b[0], b[1], b[2]}), t);
+  EXPECT_TRUE(same_point(x, y));
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(x.q(k), y.q(k));
+  PointTable table;
+  EXPECT_EQ(table.insert(QPoint(x)), table.insert(QPoint(y)));
+  // Coplanar segment against a line: (0,0)-(2,2) crosses x + y = 1 at (1/2, 1/2).
+  const double s0[3] = {0, 0, 5}, s1[3] = {2, 2, 5}, l0[3] = {1, 0, 5}, l1[3] = {0, 1, 5};
+  const QPoint c = segment_line_crossing(s0, s1, l0, l1, 0, 1);
+  EXPECT_EQ(c.q(0), mpq_class(1, 2));
+  EXPECT_EQ(c.q(1), mpq_class(1, 2));
+  EXPECT_EQ(c.q(2), mpq_class(5));
+}
+
+TEST(UnionExact, PointsBuiltOnALineAreKnownCollinear) {
+  PointTable t;
+  const int u = t.insert(make_point({0, 0, 0})), w = t.insert(make_point({3, 0, 0}));
+  const int p = t.insert_on_line(make_point(mpq_class(1), mpq_class(0), mpq_class(0)), u, w);
+  const int q = t.insert_on_line(make_point(mpq_class(2), mpq_class(0), mpq_class(0)), w, u);
+  const int off = t.insert(make_point({1, 1, 0}));
+  EXPECT_TRUE(t.known_collinear(u, p, w));
+  EXPECT_TRUE(t.known_collinear(p, q, u));
+  EXPECT_FALSE(t.known_collinear(u, p, off));
 }
 
 TEST(UnionTriangulation, CrossingSegmentsSplitAndTileTheFace) {
