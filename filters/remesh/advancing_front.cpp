@@ -62,7 +62,7 @@ public:
   PatchMesher(OutputMesh& out, int patch, const SurfaceLocator& locator, const SizeField& size,
               const FrontParams& params)
       : out_(out), patch_(patch), loc_(locator), size_(size), params_(params),
-        grid_(std::max(size.max_size(), 1e-300)) {}
+        grid_(std::max(size.max_size(), 1e-300)), face_grid_(std::max(size.max_size(), 1e-300)) {}
 
   FrontResult run(std::vector<FrontSide> front);
 
@@ -81,6 +81,7 @@ private:
   double estimated_faces() const;
   bool edge_taken(int x, int y) const;
   bool over_other_patch(int a, int b, int c) const;
+  bool over_generated_face(const Point3& p, const Point3& normal) const;
   void close_loops(size_t max_sides);
   void close_loop(std::vector<int> loop);
 
@@ -90,6 +91,7 @@ private:
   const SizeField& size_;
   FrontParams params_;
   PointGrid grid_;
+  PointGrid face_grid_;  // generated faces of this patch by centroid
   std::unordered_map<int, Local> locals_;
   std::vector<Side> sides_;
   std::unordered_map<std::uint64_t, int> front_;   // directed side -> index in sides_
@@ -134,6 +136,7 @@ void PatchMesher::remove_side(int s) {
 }
 
 void PatchMesher::add_triangle(int a, int b, int c) {
+  face_grid_.add(int(out_.faces.size()), (out_.points[a] + out_.points[b] + out_.points[c]) / 3.0);
   out_.faces.push_back({a, b, c});
   out_.face_patch.push_back(patch_);
   result_.faces++;
@@ -224,6 +227,13 @@ bool PatchMesher::valid_triangle(int a, int b, const Point3& q, int q_id, const 
     }
   }
   if (q_id >= 0 && over_other_patch(a, b, q_id)) { last_reason_ = 10; return false; }
+  // A face over this patch's generated faces: a front side that has lost its way (the
+  // meshed part ahead of it) would otherwise sweep over the meshed surface again and again.
+  const Point3 centroid = (pa + pb + q) / 3.0;
+  if (over_generated_face(centroid, frame.normal) || (q_id < 0 && over_generated_face(q, frame.normal))) {
+    last_reason_ = 11;
+    return false;
+  }
   // 2D crossing and containment against nearby front sides and points on the same side of the surface.
   const double eps = 1e-9 * L * L;
   const double reach = std::max({L, (q - pa).Norm(), (q - pb).Norm()}) + h;
@@ -386,6 +396,25 @@ void PatchMesher::seed_triangle() {
 bool PatchMesher::edge_taken(int x, int y) const {
   if (used_.count(directed(x, y)) || used_.count(directed(y, x)) || front_.count(directed(y, x))) return true;
   return out_.is_shared(x, y) && out_.shared_edges.count(OutputMesh::edge_key(x, y)) > 0;
+}
+
+// Does p lie over a generated face of this patch: within a quarter of the face's longest side
+// of its plane, inside it (by a small margin), with a normal agreeing with `normal`?
+bool PatchMesher::over_generated_face(const Point3& p, const Point3& normal) const {
+  bool over = false;
+  face_grid_.for_each_near(p, size_.max_size(), [&](int f) {
+    if (over) return;
+    const auto& t = out_.faces[f];
+    const Point3 &x = out_.points[t[0]], &y = out_.points[t[1]], &z = out_.points[t[2]];
+    const Point3 n = unit_normal(x, y, z);
+    if (n * normal < 0.5) return;
+    const double longest = std::max({(y - x).Norm(), (z - y).Norm(), (x - z).Norm()});
+    if (std::abs((p - x) * n) > 0.25 * longest) return;
+    std::array<double, 3> bary;
+    closest_point_on_triangle(p, x, y, z, bary);
+    over = bary[0] > 0.02 && bary[1] > 0.02 && bary[2] > 0.02;
+  });
+  return over;
 }
 
 // A patch bounded by just three line sides (a tiny island of a noisy scan) owns its one face;

@@ -33,6 +33,7 @@ void check_params(const Params& p, double diagonal) {
     throw InvalidInput("target_length is too small: it would make more than about 10^10 faces; use at least 1e-5 of the diagonal");
   if (!(p.max_surface_error >= 0)) throw InvalidInput("max_surface_error must be >= 0 (0 turns curvature adaptation off)");
   if (!(p.gradation >= 1.0)) throw InvalidInput("gradation must be >= 1, got " + std::to_string(p.gradation));
+  if (!std::isfinite(p.min_line_length)) throw InvalidInput("min_line_length must be finite (negative = the target length)");
   if (p.improvement_iterations < 0) throw InvalidInput("improvement_iterations must be >= 0");
   if (p.source_points.size() != p.source_sizes.size()) throw InvalidInput("one size per source point is needed");
 }
@@ -105,10 +106,12 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   fp.ridge_angle_deg = params.ridge_angle_deg;
   fp.corner_angle_deg = params.corner_angle_deg;
   fp.use_selected_edges_as_ridges = params.use_selected_edges_as_ridges;
+  fp.min_line_length = params.min_line_length < 0 ? params.target_length : params.min_line_length;
   const features::Result fr = features::detect(input, fp);
   result.corners = int(fr.corners.size());
   result.lines = int(fr.lines.size());
   result.patches = fr.patch_count;
+  result.suppressed_lines = fr.suppressed_lines;
 
   progress(params, 8, "Building the size field and the surface index");
   const Surface surface = Surface::from_mesh(input, fr.patch_of_face);

@@ -25,6 +25,9 @@ struct Params {
   double target_length = 0;        ///< absolute element size (> 0, below the bbox diagonal)
   double ridge_angle_deg = 30.0;   ///< stage 1 ridge angle
   double corner_angle_deg = 45.0;  ///< stage 1 corner angle
+  /// Stage 1 feature-noise suppression (features::Params::min_line_length), absolute;
+  /// negative = the target length, 0 keeps every ridge (strict mode).
+  double min_line_length = -1;
   double max_surface_error = 0;    ///< chord-error bound for curvature adaptation (0 = uniform)
   double gradation = 1.3;          ///< size growth limit per element (>= 1)
   Recovery recovery = Recovery::Linear;
@@ -38,6 +41,7 @@ struct Params {
 
 struct Result {
   int corners = 0, lines = 0, patches = 0;
+  int suppressed_lines = 0;     ///< short dangling lines and loops stage 1 dropped
   int feature_edges = 0;
   int merged_lines = 0;         ///< lines merged with a nearly coincident twin (sliver patch dropped)
   int thin_patches = 0;         ///< strips narrower than the elements, given one layer of faces
