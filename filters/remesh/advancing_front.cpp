@@ -84,6 +84,7 @@ private:
   bool over_generated_face(const Point3& p, const Point3& normal) const;
   void close_loops(size_t max_sides);
   void close_loop(std::vector<int> loop);
+  void fan_from_centre(const std::vector<int>& loop);
 
   OutputMesh& out_;
   int patch_;
@@ -473,7 +474,9 @@ void PatchMesher::close_loops(size_t max_sides) {
       area += out_.points[loop[k]] ^ out_.points[loop[(k + 1) % loop.size()]];
       normal += local(loop[k]).normal;
     }
-    if (area * normal > 0) close_loop(std::move(loop));
+    // Three sides never go around another patch's faces (an island owns its triangle, checked
+    // when closing): where the scan folds the summed normals can disagree, close them anyway.
+    if (area * normal > 0 || loop.size() == 3) close_loop(std::move(loop));
   }
 }
 
@@ -502,11 +505,27 @@ void PatchMesher::close_loop(std::vector<int> loop) {
     size_t chosen = n;
     for (const auto& [score, i] : ears)
       if (!over_other_patch(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n])) { chosen = i; break; }
-    if (chosen == n) return;  // every ear would duplicate an edge or cover another patch: leave it open
+    if (chosen == n) { fan_from_centre(loop); return; }
     add_triangle(loop[(chosen + n - 1) % n], loop[chosen], loop[(chosen + 1) % n]);
     loop.erase(loop.begin() + long(chosen));
   }
   if (!over_other_patch(loop[0], loop[1], loop[2])) add_triangle(loop[0], loop[1], loop[2]);
+}
+
+// A loop no ear can close (where the scan folds, its diagonals are edges elsewhere already):
+// a new point at its centre, projected onto the patch, and a fan of faces to it; every new
+// edge ends at the new point, so none is taken.
+void PatchMesher::fan_from_centre(const std::vector<int>& loop) {
+  Point3 centre(0, 0, 0), normal(0, 0, 0);
+  for (int v : loop) { centre += out_.points[v]; normal += local(v).normal; }
+  centre /= double(loop.size());
+  const Projection pr = loc_.locate(centre, patch_, normal, local(loop[0]).host, size_.max_size());
+  const int host = pr.face >= 0 ? pr.face : local(loop[0]).host;
+  if (host < 0) return;
+  const int c = out_.add_point(pr.face >= 0 ? pr.point : centre, host, PointKind::Free);
+  result_.new_points++;
+  local(c);
+  for (size_t k = 0; k < loop.size(); ++k) add_triangle(loop[k], loop[(k + 1) % loop.size()], c);
 }
 
 double PatchMesher::estimated_faces() const {
