@@ -11,6 +11,7 @@
 #include "remesh/size_field.h"
 #include "remesh/surface_locator.h"
 #include "remesh/surface_recovery.h"
+#include "remesh/vertex_snapping.h"
 
 #include <algorithm>
 #include <cmath>
@@ -147,6 +148,9 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations);
   result.swaps = ir.swaps;
   result.smoothed = ir.moves;
+
+  progress(params, 86, "Snapping to input vertices the output cuts off");
+  result.snapped = snap_to_far_vertices(out, surface, size);
 
   progress(params, 88, "Surface recovery");
   recover_surface(out, surface, params.recovery);

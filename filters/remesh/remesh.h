@@ -48,6 +48,7 @@ struct Result {
   int unmeshed_sides = 0;       ///< front sides that could not be closed (0 = complete)
   int unmeshed_patches = 0;     ///< patches with unmeshed sides
   int swaps = 0, smoothed = 0;  ///< post-pass moves
+  int snapped = 0;              ///< free points moved onto input vertices the output cut off
   double min_angle_deg = 0;     ///< worst triangle angle
   double mean_min_angle_deg = 0;  ///< mean over triangles of their smallest angle
   double edges_in_range = 0;    ///< share of edges with length in [0.7,1.4] x local size

@@ -154,6 +154,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"thin_patches", QVariant(r.thin_patches)},
       {"swaps", QVariant(r.swaps)},
       {"smoothed", QVariant(r.smoothed)},
+      {"snapped", QVariant(r.snapped)},
       {"target_length", QVariant(p.target_length)},
       {"time_ms", QVariant(ms)},
   };

@@ -1,0 +1,108 @@
+#include "remesh/vertex_snapping.h"
+
+#include "common/uniform_grid.h"
+#include "remesh/triangle_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mr::remesh {
+
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+// Faces around each point (CSR).
+struct Rings {
+  std::vector<int> begin, item;
+  Rings(size_t points, const std::vector<std::array<int, 3>>& faces) : begin(points + 1, 0) {
+    for (const auto& f : faces) for (int v : f) begin[v + 1]++;
+    for (size_t i = 1; i <= points; ++i) begin[i] += begin[i - 1];
+    item.resize(begin[points]);
+    std::vector<int> fill(begin.begin(), begin.end() - 1);
+    for (size_t f = 0; f < faces.size(); ++f) for (int v : faces[f]) item[fill[v]++] = int(f);
+  }
+};
+
+double face_distance(const OutputMesh& out, int f, const Point3& p) {
+  const auto& t = out.faces[f];
+  std::array<double, 3> bary;
+  return (closest_point_on_triangle(p, out.points[t[0]], out.points[t[1]], out.points[t[2]], bary) - p).Norm();
+}
+
+}  // namespace
+
+int snap_to_far_vertices(OutputMesh& out, const Surface& input, const SizeField& size, const SnapParams& params) {
+  if (out.faces.empty()) return 0;
+  const Rings out_rings(out.points.size(), out.faces);
+  const Rings in_rings(input.points.size(), input.faces);
+  UniformGrid grid(std::max(size.max_size(), 1e-300));
+  for (size_t v = 0; v < out.points.size(); ++v)
+    if (out_rings.begin[v] < out_rings.begin[v + 1]) grid.insert(int(v), out.points[v]);
+
+  // Distance from p to the output faces around points within r of it (infinity if none).
+  auto deviation = [&](const Point3& p, double r) {
+    double best = std::numeric_limits<double>::infinity();
+    grid.visit(p, r, [&](int v) {
+      for (int k = out_rings.begin[v]; k < out_rings.begin[v + 1]; ++k)
+        best = std::min(best, face_distance(out, out_rings.item[k], p));
+    });
+    return best;
+  };
+  std::vector<std::pair<double, int>> far;
+  for (size_t v = 0; v < input.points.size(); ++v) {
+    const double h = size.at_vertex(int(v));
+    const double d = deviation(input.points[v], h);
+    if (std::isfinite(d) && d > params.min_deviation * h) far.push_back({d / h, int(v)});
+  }
+  std::sort(far.begin(), far.end(), std::greater<>());
+
+  std::vector<char> moved(out.points.size(), 0);
+  int snapped = 0;
+  for (const auto& [ratio, v] : far) {
+    const Point3& target = input.points[v];
+    const double h = size.at_vertex(v);
+    const double before_deviation = deviation(target, h);  // earlier snaps may have fixed it
+    if (!(before_deviation > params.min_deviation * h)) continue;
+    // Only vertices inside one patch: a free point never goes onto a feature line.
+    const int patch = input.group[in_rings.item[in_rings.begin[v]]];
+    bool one_patch = in_rings.begin[v] < in_rings.begin[v + 1];
+    for (int k = in_rings.begin[v]; k < in_rings.begin[v + 1]; ++k) one_patch = one_patch && input.group[in_rings.item[k]] == patch;
+    if (!one_patch) continue;
+    std::vector<std::pair<double, int>> candidates;
+    grid.visit(target, params.reach * h, [&](int q) {
+      if (out.kind[q] != PointKind::Free || moved[q]) return;
+      const double d = (out.points[q] - target).Norm();
+      if (d <= params.reach * h && out.face_patch[out_rings.item[out_rings.begin[q]]] == patch) candidates.push_back({d, q});
+    });
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    for (const auto& [d, q] : candidates) {
+      double old_min = 1e9;
+      std::vector<Point3> old_normals;
+      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1]; ++k) {
+        const auto& f = out.faces[out_rings.item[k]];
+        old_min = std::min(old_min, min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
+        old_normals.push_back(unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
+      }
+      const Point3 old = out.points[q];
+      out.points[q] = target;
+      bool ok = true;
+      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1] && ok; ++k) {
+        const auto& f = out.faces[out_rings.item[k]];
+        const Point3 n = unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]);
+        ok = n * old_normals[k - out_rings.begin[q]] >= 0.5 &&
+             min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]) >= std::min(old_min, params.min_angle_deg * kDeg);
+      }
+      if (!ok) { out.points[q] = old; continue; }
+      out.host[q] = in_rings.item[in_rings.begin[v]];
+      moved[q] = 1;
+      ++snapped;
+      break;
+    }
+  }
+  return snapped;
+}
+
+}  // namespace mr::remesh
