@@ -58,6 +58,16 @@ int snap_to_far_vertices(OutputMesh& out, const Surface& input, const SizeField&
   }
   std::sort(far.begin(), far.end(), std::greater<>());
 
+  UniformGrid input_grid(std::max(size.max_size(), 1e-300));
+  for (size_t v = 0; v < input.points.size(); ++v) input_grid.insert(int(v), input.points[v]);
+  // Input vertices a move of point q could bring farther from the output.
+  auto around = [&](int q) {
+    std::vector<int> near;
+    const double r = 2 * size.max_size();
+    input_grid.visit(out.points[q], r, [&](int u) { if ((input.points[u] - out.points[q]).Norm() <= r) near.push_back(u); });
+    return near;
+  };
+
   std::vector<char> moved(out.points.size(), 0);
   int snapped = 0;
   for (const auto& [ratio, v] : far) {
@@ -86,6 +96,9 @@ int snap_to_far_vertices(OutputMesh& out, const Surface& input, const SizeField&
         old_min = std::min(old_min, min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
         old_normals.push_back(unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
       }
+      const std::vector<int> neighbours = around(q);
+      std::vector<double> before;
+      for (int u : neighbours) before.push_back(deviation(input.points[u], size.at_vertex(u)));
       const Point3 old = out.points[q];
       out.points[q] = target;
       bool ok = true;
@@ -94,6 +107,13 @@ int snap_to_far_vertices(OutputMesh& out, const Surface& input, const SizeField&
         const Point3 n = unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]);
         ok = n * old_normals[k - out_rings.begin[q]] >= 0.5 &&
              min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]) >= std::min(old_min, params.min_angle_deg * kDeg);
+      }
+      // Nothing nearby may end up beyond the threshold that was within it (or farther than it was).
+      for (size_t k = 0; k < neighbours.size() && ok; ++k) {
+        const int u = neighbours[k];
+        if (u == v) continue;
+        const double limit = std::max(before[k], params.min_deviation * size.at_vertex(u));
+        ok = deviation(input.points[u], size.at_vertex(u)) <= limit * (1 + 1e-9);
       }
       if (!ok) { out.points[q] = old; continue; }
       out.host[q] = in_rings.item[in_rings.begin[v]];
