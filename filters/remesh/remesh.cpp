@@ -155,7 +155,7 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   result.smoothed = ir.moves;
 
   progress(params, 86, "Snapping to input vertices the output cuts off");
-  result.snapped = snap_to_far_vertices(out, surface, size);
+  result.snapped = snap_to_far_vertices(out, locator, size);
 
   progress(params, 88, "Surface recovery");
   recover_surface(out, surface, params.recovery);

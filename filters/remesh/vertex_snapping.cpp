@@ -33,8 +33,10 @@ double face_distance(const OutputMesh& out, int f, const Point3& p) {
 
 }  // namespace
 
-int snap_to_far_vertices(OutputMesh& out, const Surface& input, const SizeField& size, const SnapParams& params) {
+int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& locator, const SizeField& size,
+                         const SnapParams& params) {
   if (out.faces.empty()) return 0;
+  const Surface& input = locator.surface();
   const Rings out_rings(out.points.size(), out.faces);
   const Rings in_rings(input.points.size(), input.faces);
   UniformGrid grid(std::max(size.max_size(), 1e-300));
@@ -68,6 +70,17 @@ int snap_to_far_vertices(OutputMesh& out, const Surface& input, const SizeField&
     return near;
   };
 
+  // Largest distance from the input of face f's centroid and side midpoints.
+  auto face_gap = [&](int f) {
+    const auto& t = out.faces[f];
+    const Point3 &a = out.points[t[0]], &b = out.points[t[1]], &c = out.points[t[2]];
+    const Point3 normal = unit_normal(a, b, c);
+    double gap = 0;
+    for (const Point3& p : {(a + b + c) / 3.0, (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5})
+      gap = std::max(gap, locator.locate(p, out.face_patch[f], normal, out.host[t[0]], 2 * size.max_size()).distance);
+    return gap;
+  };
+
   std::vector<char> moved(out.points.size(), 0);
   int snapped = 0;
   for (const auto& [ratio, v] : far) {
@@ -97,8 +110,9 @@ int snap_to_far_vertices(OutputMesh& out, const Surface& input, const SizeField&
         old_normals.push_back(unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
       }
       const std::vector<int> neighbours = around(q);
-      std::vector<double> before;
+      std::vector<double> before, gaps_before;
       for (int u : neighbours) before.push_back(deviation(input.points[u], size.at_vertex(u)));
+      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1]; ++k) gaps_before.push_back(face_gap(out_rings.item[k]));
       const Point3 old = out.points[q];
       out.points[q] = target;
       bool ok = true;
@@ -115,6 +129,8 @@ int snap_to_far_vertices(OutputMesh& out, const Surface& input, const SizeField&
         const double limit = std::max(before[k], params.min_deviation * size.at_vertex(u));
         ok = deviation(input.points[u], size.at_vertex(u)) <= limit * (1 + 1e-9);
       }
+      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1] && ok; ++k)
+        ok = face_gap(out_rings.item[k]) <= std::max(gaps_before[k - out_rings.begin[q]], params.min_deviation * h) * (1 + 1e-9);
       if (!ok) { out.points[q] = old; continue; }
       out.host[q] = in_rings.item[in_rings.begin[v]];
       moved[q] = 1;

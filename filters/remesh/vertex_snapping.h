@@ -15,7 +15,8 @@ namespace mr::remesh {
 // its edges in range and 6 degrees of 1st-percentile angle; from 0.2 x size (reach 1, 10 degrees)
 // 0.1% and 1.4 degrees, and its input-to-output distance drops from 0.34 to 0.26 x target (bunny
 // 0.31 -> 0.22). A move is kept only if no input vertex nearby ends up farther than the threshold
-// (or than it was): moving a point drags its faces away from other details.
+// (or than it was) and no face around the moved point strays farther from the input than that
+// either: moving a point drags its faces away from other details.
 struct SnapParams {
   double min_deviation = 0.2;  ///< vertices farther than this x local size from the output are snapped to
   double reach = 1.0;          ///< free points within this x local size may move
@@ -25,6 +26,7 @@ struct SnapParams {
 /// Moves free points onto far input vertices (interior to one patch), farthest first; returns how
 /// many moved.
 /// Points keep to their patch and get the input vertex's face there as host.
-int snap_to_far_vertices(OutputMesh& out, const Surface& input, const SizeField& size, const SnapParams& params = {});
+int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& input, const SizeField& size,
+                         const SnapParams& params = {});
 
 }  // namespace mr::remesh

@@ -63,6 +63,9 @@ SHORTFALLS = {
     "cad/fandisk.obj": {"worst_angle": 17.0},
     # 1st-percentile angle 1.087 vs 1.341: the two thin rims take one layer of needle faces (over 1% of all faces)
     "cad/blade.off": {"p1_angle": 1.0},
+    # Hausdorff 0.00268-0.00275 vs 0.00259-0.00276 of the diagonal (it depends on the run: the
+    # maxima are sampled): faces across the creases stage 1 dropped stray up to 0.27 x target
+    "organic/rocker-arm.obj": {"hausdorff_rel": 0.0029},
     # worst angle 6.12 vs 9.65: faces among corners and line points closer than 0.1 x target
     "organic/stanford-bunny.obj": {"worst_angle": 6.0},
 }
@@ -133,7 +136,8 @@ def remesh_and_compare(name):
     surface = ms.current_mesh_id()
 
     def hausdorff(i):
-        kw = dict(samplenum=max(out.face_number(), 20000), sampleface=True)
+        # Vertices and edges too, and many face samples: with 20k the maximum moved by ~10% between runs.
+        kw = dict(samplenum=max(20 * out.face_number(), 200000), samplevert=True, sampleedge=True, sampleface=True)
         return max(ms.get_hausdorff_distance(sampledmesh=i, targetmesh=surface, **kw)["max"],
                    ms.get_hausdorff_distance(sampledmesh=surface, targetmesh=i, **kw)["max"])
 
