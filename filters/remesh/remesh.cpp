@@ -8,6 +8,7 @@
 #include "remesh/mesh_improvement.h"
 #include "remesh/mesh_measures.h"
 #include "remesh/output_mesh.h"
+#include "remesh/patch_retry.h"
 #include "remesh/size_field.h"
 #include "remesh/surface_locator.h"
 #include "remesh/surface_recovery.h"
@@ -98,6 +99,8 @@ std::vector<double> small_feature_caps(const TriMesh& mesh, const features::Resu
   return cap;
 }
 
+constexpr double kRetryScale = 0.75;
+
 }  // namespace
 
 Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
@@ -144,7 +147,17 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
     FrontParams fp_patch;
     fp_patch.thin_patch = ff.thin_patch[patch] != 0;
     result.thin_patches += fp_patch.thin_patch ? 1 : 0;
-    const FrontResult r = advance_front(out, ff.patch_front[patch], patch, locator, size, fp_patch);
+    FrontResult r = advance_front(out, ff.patch_front[patch], patch, locator, size, fp_patch);
+    // A front that could not close or pinched a point (thin parts of a scan): again with
+    // smaller elements, which pass there: at most twice, at 0.75 and 0.56 x the size.
+    for (double scale = kRetryScale; !fp_patch.thin_patch && scale >= 0.5 &&
+                                     (r.unmeshed_sides > 0 || pinched_points(out, patch) > 0);
+         scale *= kRetryScale) {
+      remove_patch_faces(out, patch);
+      const SizeField smaller = size.scaled(scale);
+      r = advance_front(out, ff.patch_front[patch], patch, locator, smaller, fp_patch);
+      result.retried_patches++;
+    }
     result.unmeshed_sides += r.unmeshed_sides;
     if (r.unmeshed_sides > 0 || r.iteration_limit) result.unmeshed_patches++;
   }

@@ -150,6 +150,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"hausdorff_rel", QVariant(r.diagonal > 0 ? r.hausdorff / r.diagonal : 0.0)},
       {"unmeshed_sides", QVariant(r.unmeshed_sides)},
       {"unmeshed_patches", QVariant(r.unmeshed_patches)},
+      {"retried_patches", QVariant(r.retried_patches)},
       {"merged_lines", QVariant(r.merged_lines)},
       {"thin_patches", QVariant(r.thin_patches)},
       {"swaps", QVariant(r.swaps)},
