@@ -242,7 +242,8 @@ def main(argv=None):
     fig.savefig(out / "remesh_min_angle_hist.png", dpi=80)
     print(md)
     if args.benchmark_md:
-        cmd = "MESHREGRID_PLUGIN_DIR=build/plugins .venv/bin/python scripts/compare_isotropic.py --benchmark-md"
+        cmd = ("MESHREGRID_PLUGIN_DIR=build/plugins .venv/bin/python scripts/compare_isotropic.py --benchmark-md"
+               + (" --no-peers" if args.no_peers else ""))
         text = (f"# Advancing-front remeshing vs MeshLab isotropic remeshing\n\n"
                 f"Command: `{cmd}`  \nMachine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
                 f"{platform.system()}  \nDate: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC  \n"
