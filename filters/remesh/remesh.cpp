@@ -99,7 +99,7 @@ std::vector<double> small_feature_caps(const TriMesh& mesh, const features::Resu
   return cap;
 }
 
-constexpr double kRetryScale = 0.75;
+constexpr double kRetryScale = 0.9;
 
 }  // namespace
 
@@ -149,7 +149,8 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
     result.thin_patches += fp_patch.thin_patch ? 1 : 0;
     FrontResult r = advance_front(out, ff.patch_front[patch], patch, locator, size, fp_patch);
     // A front that could not close or pinched a point (thin parts of a scan): again with
-    // smaller elements, which pass there: at most twice, at 0.75 and 0.56 x the size.
+    // smaller elements, which pass there: each time 0.9 x the size, down to about half of it.
+    // (Armadillo at 1%: one retry; 0.75 at once left 71% of its edges in range, 0.9 leaves 86%.)
     for (double scale = kRetryScale; !fp_patch.thin_patch && scale >= 0.5 &&
                                      (r.unmeshed_sides > 0 || pinched_points(out, patch) > 0);
          scale *= kRetryScale) {

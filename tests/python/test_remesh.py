@@ -68,9 +68,9 @@ SHORTFALLS = {
     "organic/rocker-arm.obj": {"hausdorff_rel": 0.0030},
     # worst angle 6.12 vs 9.65: faces among corners and line points closer than 0.1 x target
     "organic/stanford-bunny.obj": {"worst_angle": 6.0},
-    # 71% of the edges in range: the front at full size pinched points where thin parts meet, so the
-    # main patch was meshed again at 0.75 x size (86% before, with holes and a non-manifold vertex)
-    "organic/armadillo.off": {"edges_in_range": 0.70},
+    # 85.8% of the edges in range: corners still closer than 0.7 x target, and the front at full size
+    # pinched points where thin parts meet, so the main patch is meshed again at 0.9 x size
+    "organic/armadillo.off": {"edges_in_range": 0.85},
 }
 
 
