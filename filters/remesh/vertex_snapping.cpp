@@ -88,9 +88,11 @@ int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& locator, const S
     const double h = size.at_vertex(v);
     const double before_deviation = deviation(target, h);  // earlier snaps may have fixed it
     if (!(before_deviation > params.min_deviation * h)) continue;
-    // Only vertices inside one patch: a free point never goes onto a feature line.
+    // Only vertices inside one patch (and on a face: scans carry unused points): a free point
+    // never goes onto a feature line.
+    if (in_rings.begin[v] == in_rings.begin[v + 1]) continue;
     const int patch = input.group[in_rings.item[in_rings.begin[v]]];
-    bool one_patch = in_rings.begin[v] < in_rings.begin[v + 1];
+    bool one_patch = true;
     for (int k = in_rings.begin[v]; k < in_rings.begin[v + 1]; ++k) one_patch = one_patch && input.group[in_rings.item[k]] == patch;
     if (!one_patch) continue;
     std::vector<std::pair<double, int>> candidates;
@@ -133,6 +135,7 @@ int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& locator, const S
         ok = face_gap(out_rings.item[k]) <= std::max(gaps_before[k - out_rings.begin[q]], params.min_deviation * h) * (1 + 1e-9);
       if (!ok) { out.points[q] = old; continue; }
       out.host[q] = in_rings.item[in_rings.begin[v]];
+      grid.insert(q, target);  // found from its new place too (the old entry only costs a visit)
       moved[q] = 1;
       ++snapped;
       break;
