@@ -21,6 +21,8 @@ void check_params(const Params& p) {
     throw InvalidInput("corner_angle must lie in [0, 180] degrees, got " + std::to_string(p.corner_angle_deg));
   if (p.min_patch_faces < 0)
     throw InvalidInput("min_patch_faces must be >= 0, got " + std::to_string(p.min_patch_faces));
+  if (!(p.min_line_length >= 0) || !std::isfinite(p.min_line_length))
+    throw InvalidInput("min_line_length must be >= 0 (0 keeps every ridge), got " + std::to_string(p.min_line_length));
 }
 
 // Unit face normals; zero for a degenerate face, which then never makes a ridge by angle.
@@ -212,6 +214,98 @@ std::vector<DiscreteLine> trace_lines(int nv, const EdgeTable& edges, const std:
   return lines;
 }
 
+// The edge between consecutive vertices of a line (both on ridge edges of vr).
+int ridge_between(const EdgeTable& edges, const VertexRidges& vr, int a, int b) {
+  for (int k = vr.begin[a]; k < vr.begin[a + 1]; ++k)
+    if (other_end(edges, vr.edge[k], a) == b) return vr.edge[k];
+  return -1;
+}
+
+std::vector<int> line_edges(const EdgeTable& edges, const VertexRidges& vr, const DiscreteLine& line) {
+  std::vector<int> out;
+  const size_t n = line.vertices.size();
+  for (size_t k = 0; k + 1 < n + (line.closed ? 1 : 0); ++k)
+    out.push_back(ridge_between(edges, vr, line.vertices[k], line.vertices[(k + 1) % n]));
+  return out;
+}
+
+double edge_length(const TriMesh& mesh, const EdgeTable& edges, int e) {
+  return (mesh.vert[edges.v0(e)].cP() - mesh.vert[edges.v1(e)].cP()).Norm();
+}
+
+struct Suppressed {
+  int lines = 0, edges = 0;
+};
+
+// Components of the ridge graph that are simple cycles (every vertex on two ridges, corners
+// included) shorter than min_length: a small closed crease, e.g. around a bump of a scan.
+int drop_short_cycles(const TriMesh& mesh, const EdgeTable& edges, const VertexRidges& vr,
+                      std::vector<char>& edge_is_ridge, const std::vector<char>& keep, double min_length,
+                      Suppressed& s) {
+  std::vector<char> seen(edges.edge_count(), 0);
+  int dropped = 0;
+  for (int e0 = 0; e0 < edges.edge_count(); ++e0) {
+    if (!edge_is_ridge[e0] || seen[e0]) continue;
+    std::vector<int> component{e0}, stack{e0};
+    seen[e0] = 1;
+    bool cycle = true;
+    while (!stack.empty()) {
+      const int e = stack.back();
+      stack.pop_back();
+      for (int v : {edges.v0(e), edges.v1(e)}) {
+        if (vr.count(v) != 2) cycle = false;
+        for (int k = vr.begin[v]; k < vr.begin[v + 1]; ++k)
+          if (!seen[vr.edge[k]]) { seen[vr.edge[k]] = 1; component.push_back(vr.edge[k]); stack.push_back(vr.edge[k]); }
+      }
+    }
+    if (!cycle) continue;
+    double length = 0;
+    bool kept = false;
+    for (int e : component) { length += edge_length(mesh, edges, e); kept = kept || keep[e]; }
+    if (kept || length >= min_length) continue;
+    for (int e : component) edge_is_ridge[e] = 0;
+    s.lines++;
+    s.edges += int(component.size());
+    dropped++;
+  }
+  return dropped;
+}
+
+// Feature-noise suppression: lines shorter than min_length with a dangling end, and short closed
+// lines (a loop from a junction back to it), are dropped; then short simple cycles. Repeated,
+// since a dropped branch can leave a junction with one ridge less. `keep` edges never go.
+Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
+                                const std::vector<char>& keep, const Params& p) {
+  Suppressed s;
+  if (p.min_line_length <= 0) return s;
+  const int nv = int(mesh.vert.size());
+  while (true) {
+    int dropped = 0;
+    const VertexRidges vr = vertex_ridges(nv, edges, edge_is_ridge);
+    const auto corners = find_corners(mesh, edges, vr, p.corner_angle_deg);
+    const auto lines = trace_lines(nv, edges, edge_is_ridge, vr, corners);
+    std::vector<std::vector<int>> to_drop;
+    for (const auto& line : lines) {
+      const bool dangling = !line.closed && (vr.count(line.vertices.front()) == 1 || vr.count(line.vertices.back()) == 1);
+      if (!line.closed && !dangling) continue;
+      const std::vector<int> es = line_edges(edges, vr, line);
+      double length = 0;
+      bool kept = false;
+      for (int e : es) { length += edge_length(mesh, edges, e); kept = kept || keep[e]; }
+      if (!kept && length < p.min_line_length) to_drop.push_back(es);
+    }
+    for (const auto& es : to_drop) {
+      for (int e : es) edge_is_ridge[e] = 0;
+      s.lines++;
+      s.edges += int(es.size());
+      dropped++;
+    }
+    const VertexRidges after = vertex_ridges(nv, edges, edge_is_ridge);
+    dropped += drop_short_cycles(mesh, edges, after, edge_is_ridge, keep, p.min_line_length, s);
+    if (dropped == 0) return s;
+  }
+}
+
 }  // namespace
 
 Result detect(const TriMesh& mesh, const Params& params) {
@@ -224,16 +318,22 @@ Result detect(const TriMesh& mesh, const Params& params) {
 
   Result result;
   std::vector<char> edge_is_ridge(edges.edge_count(), 0);
+  std::vector<char> keep(edges.edge_count(), 0);  // ridges the noise suppression never drops
   for (int e = 0; e < edges.edge_count(); ++e) {
     int val = edges.valence(e);
     if (val == 1) ++result.boundary_edges;
     if (val > 2) ++result.non_manifold_edges;
     edge_is_ridge[e] = is_shape_ridge(mesh, edges, normals, e, cos_ridge);
+    keep[e] = val != 2;
   }
   if (params.use_selected_edges_as_ridges)
     for (int f = 0; f < nf; ++f)
       for (int z = 0; z < 3; ++z)
-        if (mesh.face[f].IsFaceEdgeS(z)) edge_is_ridge[edges.edge_of(f, z)] = 1;
+        if (mesh.face[f].IsFaceEdgeS(z)) edge_is_ridge[edges.edge_of(f, z)] = keep[edges.edge_of(f, z)] = 1;
+
+  const Suppressed suppressed = suppress_short_lines(mesh, edges, edge_is_ridge, keep, params);
+  result.suppressed_lines = suppressed.lines;
+  result.suppressed_ridge_edges = suppressed.edges;
 
   Flood flood = flood_patches(mesh, edges, edge_is_ridge);
   result.merged_patches = merge_small_patches(edges, edge_is_ridge, flood, params.min_patch_faces);

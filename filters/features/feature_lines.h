@@ -18,6 +18,11 @@ struct Params {
   bool use_selected_edges_as_ridges = false;
   /// Patches with fewer faces merge into their largest neighbour (0 = off).
   int min_patch_faces = 0;
+  /// Feature-noise suppression (absolute length, 0 = keep every ridge): repeatedly drops lines
+  /// shorter than this with a dangling end (an end vertex on that one ridge only) and closed
+  /// ridge loops shorter than this, ridges an element of this size cannot represent. Boundary,
+  /// non-manifold and selected edges are never dropped.
+  double min_line_length = 0;
 };
 
 /// One chain of ridge edges between two corners, or a closed loop without corners.
@@ -36,6 +41,8 @@ struct Result {
   int non_manifold_edges = 0;
   int patch_count = 0;
   int merged_patches = 0;     ///< patches removed by the minimum-size merge
+  int suppressed_lines = 0;   ///< short dangling lines and loops dropped by min_line_length
+  int suppressed_ridge_edges = 0;  ///< their ridge edges
 };
 
 /// Detects ridges, corners, discrete lines and patches.

@@ -26,6 +26,9 @@ struct Params {
   double target_length = 0;        ///< absolute element size (> 0, below the bbox diagonal)
   double ridge_angle_deg = 30.0;   ///< stage 1 ridge angle
   double corner_angle_deg = 45.0;  ///< stage 1 corner angle
+  /// Stage 1 feature-noise suppression (features::Params::min_line_length), absolute;
+  /// negative = the target length, 0 keeps every ridge (strict mode).
+  double min_line_length = -1;
   double max_surface_error = 0;    ///< chord-error bound for curvature adaptation (0 = uniform)
   double gradation = 1.3;          ///< size growth limit per element (>= 1)
   Recovery recovery = Recovery::Linear;
@@ -40,12 +43,15 @@ struct Params {
 
 struct Result {
   int corners = 0, lines = 0, patches = 0;
+  int suppressed_lines = 0;     ///< short dangling lines and loops stage 1 dropped
   int feature_edges = 0;
   int merged_lines = 0;         ///< lines merged with a nearly coincident twin (sliver patch dropped)
   int thin_patches = 0;         ///< strips narrower than the elements, given one layer of faces
   int unmeshed_sides = 0;       ///< front sides that could not be closed (0 = complete)
   int unmeshed_patches = 0;     ///< patches with unmeshed sides
+  int retried_patches = 0;      ///< patch meshings repeated with smaller elements
   int swaps = 0, smoothed = 0;  ///< post-pass moves
+  int snapped = 0;              ///< free points moved onto input vertices the output cut off
   double min_angle_deg = 0;     ///< worst triangle angle
   double mean_min_angle_deg = 0;  ///< mean over triangles of their smallest angle
   double edges_in_range = 0;    ///< share of edges with length in [0.7,1.4] x local size

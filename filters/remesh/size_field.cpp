@@ -82,6 +82,12 @@ void SizeField::limit_gradation(double gradation) {
   }
 }
 
+SizeField SizeField::scaled(double factor) const {
+  std::vector<double> sizes(vertex_size_);
+  for (double& h : sizes) h *= factor;
+  return SizeField(surface_, std::move(sizes));
+}
+
 void SizeField::update_range() {
   if (vertex_size_.empty()) return;
   min_ = *std::min_element(vertex_size_.begin(), vertex_size_.end());

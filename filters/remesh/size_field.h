@@ -32,6 +32,9 @@ public:
   /// Builds a field with given per-vertex sizes (tests).
   SizeField(const Surface& surface, std::vector<double> vertex_size);
 
+  /// The same field with every size times `factor`.
+  SizeField scaled(double factor) const;
+
   /// Size at barycentric coordinates `bary` of face f.
   double at(int face, const std::array<double, 3>& bary) const;
   double at_vertex(int v) const { return vertex_size_[v]; }

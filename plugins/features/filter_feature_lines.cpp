@@ -47,8 +47,9 @@ int FilterFeatureLinesPlugin::postCondition(const QAction*) const {
   return MeshModel::MM_FACEFLAGSELECT | MeshModel::MM_VERTFLAGSELECT | MeshModel::MM_FACECOLOR;
 }
 
-RichParameterList FilterFeatureLinesPlugin::initParameterList(const QAction*, const MeshModel&) {
+RichParameterList FilterFeatureLinesPlugin::initParameterList(const QAction*, const MeshModel& m) {
   mr::features::Params defaults;
+  const double diag = m.cm.bbox.IsNull() ? 1.0 : double(m.cm.bbox.Diag());
   RichParameterList list;
   list.addParam(RichFloat("ridge_angle", defaults.ridge_angle_deg, "Ridge angle (deg)",
                           "An edge is a ridge when the normals of its two faces differ by more than this "
@@ -63,6 +64,13 @@ RichParameterList FilterFeatureLinesPlugin::initParameterList(const QAction*, co
   list.addParam(RichInt("min_patch_faces", defaults.min_patch_faces, "Minimum patch size (faces)",
                         "Patches with fewer faces merge into their largest neighbouring patch and the "
                         "ridges between them are dropped. 0 turns merging off."));
+  list.addParam(RichPercentage("min_line_length", Scalarm(defaults.min_line_length), 0, Scalarm(diag),
+                               "Minimum line length",
+                               "Feature-noise suppression: lines shorter than this that end in the open (an end "
+                               "vertex on that one ridge only) and closed ridge loops shorter than this stop being "
+                               "ridges, repeatedly; then corners, lines and patches are found again. Absolute, or a "
+                               "percentage of the bounding-box diagonal; use the element size you mesh with. "
+                               "Boundary, non-manifold and selected edges always stay. 0 keeps every ridge."));
   list.addParam(RichBool("create_lines_layer", false, "Create a layer with the lines",
                          "Add a new layer holding the discrete lines as an edge mesh (polylines)."));
   list.addParam(RichBool("color_patches", true, "Colour faces by patch",
@@ -135,6 +143,7 @@ std::map<std::string, QVariant> FilterFeatureLinesPlugin::applyFilter(
   p.corner_angle_deg = params.getFloat("corner_angle");
   p.use_selected_edges_as_ridges = params.getBool("use_selected_edges_as_ridges");
   p.min_patch_faces = params.getInt("min_patch_faces");
+  p.min_line_length = params.getAbsPerc("min_line_length");
 
   if (cb) cb(0, "Copying mesh");
   mr::bridge::CoreCopy copy;
@@ -158,6 +167,8 @@ std::map<std::string, QVariant> FilterFeatureLinesPlugin::applyFilter(
       {"boundary_edges", QVariant(r.boundary_edges)},
       {"non_manifold_edges", QVariant(r.non_manifold_edges)},
       {"merged_patches", QVariant(r.merged_patches)},
+      {"suppressed_lines", QVariant(r.suppressed_lines)},
+      {"suppressed_ridge_edges", QVariant(r.suppressed_ridge_edges)},
       {"time_ms", QVariant(ms)},
   };
 }

@@ -54,6 +54,11 @@ RichParameterList Remeshing::initParameterList(const QAction*, const MeshDocumen
   list.addParam(RichFloat("corner_angle", Scalarm(d.corner_angle_deg), "Corner angle (deg)",
                           "A point on two ridges is a corner, kept as an output vertex, when the line turns by "
                           "more than this angle, in [0, 180]."));
+  list.addParam(RichPercentage("min_line_length", Scalarm(diag * 0.01), 0, Scalarm(diag), "Minimum feature line length",
+                               "Feature-noise suppression: ridge lines shorter than this with an open end, and "
+                               "closed ridge loops shorter than this, are not kept as features (elements of the "
+                               "target size cannot represent them). Set it to the target length (the default is "
+                               "the default target, 1% of the diagonal); 0 keeps every ridge and corner."));
   list.addParam(RichPercentage("max_surface_error", 0, 0, Scalarm(diag), "Max surface (chord) error",
                                "Curvature adaptation: where the surface bends, elements shrink so the chord error "
                                "stays below this distance (h <= sqrt(8 e R)). 0 keeps the size uniform."));
@@ -90,6 +95,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
   p.target_length = params.getAbsPerc("target_length");
   p.ridge_angle_deg = params.getFloat("ridge_angle");
   p.corner_angle_deg = params.getFloat("corner_angle");
+  p.min_line_length = params.getAbsPerc("min_line_length");
   p.max_surface_error = params.getAbsPerc("max_surface_error");
   p.gradation = params.getFloat("gradation");
   const int recovery = params.getEnum("recovery");
@@ -145,6 +151,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"corners", QVariant(r.corners)},
       {"lines", QVariant(r.lines)},
       {"patches", QVariant(r.patches)},
+      {"suppressed_lines", QVariant(r.suppressed_lines)},
       {"feature_edges", QVariant(r.feature_edges)},
       {"min_angle", QVariant(r.min_angle_deg)},
       {"mean_min_angle", QVariant(r.mean_min_angle_deg)},
@@ -153,10 +160,12 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"hausdorff_rel", QVariant(r.diagonal > 0 ? r.hausdorff / r.diagonal : 0.0)},
       {"unmeshed_sides", QVariant(r.unmeshed_sides)},
       {"unmeshed_patches", QVariant(r.unmeshed_patches)},
+      {"retried_patches", QVariant(r.retried_patches)},
       {"merged_lines", QVariant(r.merged_lines)},
       {"thin_patches", QVariant(r.thin_patches)},
       {"swaps", QVariant(r.swaps)},
       {"smoothed", QVariant(r.smoothed)},
+      {"snapped", QVariant(r.snapped)},
       {"target_length", QVariant(p.target_length)},
       {"time_ms", QVariant(ms)},
   };

@@ -32,7 +32,8 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
                   else pymeshlab.PercentageValue(target_percent))
         result["remesh"] = ms.meshing_advancing_front_remesh(
             target_length=length, ridge_angle=ridge_angle, corner_angle=corner_angle,
-            improvement_iterations=improvement_iterations, use_selected_edges_as_ridges=True)
+            improvement_iterations=improvement_iterations, use_selected_edges_as_ridges=True,
+            min_line_length=length)  # the intersection lines are selected edges and always stay
     return result
 
 

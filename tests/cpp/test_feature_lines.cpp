@@ -158,6 +158,80 @@ TEST(FeatureLines, SmallPatchesMergeIntoTheirLargestNeighbour) {
   EXPECT_EQ(merged.corners.size(), 8u);
 }
 
+namespace {
+// A flat 10 x 10 grid folded along x = 0.5 by an amount that fades with y: a crease from the
+// boundary at y = 0 that ends inside the surface (a dangling end), as noisy scans have them.
+void fading_crease(TriMesh& m) {
+  test::grid(m, 10);
+  for (auto& v : m.vert) {
+    const double fade = (1 - v.P()[1]) * (1 - v.P()[1]);
+    v.P()[2] = 2.0 * std::abs(v.P()[0] - 0.5) * fade;
+  }
+}
+
+double line_length(const TriMesh& m, const features::DiscreteLine& line) {
+  double length = 0;
+  const size_t n = line.vertices.size();
+  for (size_t k = 0; k + 1 < n + (line.closed ? 1 : 0); ++k)
+    length += (m.vert[line.vertices[k]].cP() - m.vert[line.vertices[(k + 1) % n]].cP()).Norm();
+  return length;
+}
+}  // namespace
+
+TEST(FeatureLines, ShortDanglingCreaseIsDroppedByMinLineLength) {
+  TriMesh m;
+  fading_crease(m);
+  const auto strict = detect(m);
+  ASSERT_GT(strict.ridge_edges, strict.boundary_edges);  // the crease is there
+  double crease = 0;
+  for (const auto& line : strict.lines) {
+    const auto& a = m.vert[line.vertices.front()].cP();
+    const auto& b = m.vert[line.vertices.back()].cP();
+    if (a[0] == 0.5 && b[0] == 0.5) crease = line_length(m, line);
+  }
+  ASSERT_GT(crease, 0.2);
+  features::Params p;
+  p.min_line_length = 0.9 * crease;  // shorter than the crease: everything stays
+  const auto kept = detect(m, p);
+  EXPECT_EQ(kept.ridge_edges, strict.ridge_edges);
+  EXPECT_EQ(kept.corners, strict.corners);
+  EXPECT_EQ(kept.suppressed_lines, 0);
+  p.min_line_length = 1.1 * crease;  // longer: the crease goes, the boundary always stays
+  const auto dropped = detect(m, p);
+  EXPECT_EQ(dropped.suppressed_lines, 1);
+  EXPECT_EQ(dropped.ridge_edges, dropped.boundary_edges);
+  EXPECT_EQ(dropped.suppressed_ridge_edges, strict.ridge_edges - dropped.ridge_edges);
+  EXPECT_LT(dropped.corners.size(), strict.corners.size());
+  EXPECT_EQ(dropped.patch_count, 1);
+}
+
+TEST(FeatureLines, ShortClosedLoopsAreDroppedAndLongOnesKept) {
+  TriMesh m;
+  test::cylinder(m, 32, 4);  // two rim circles of perimeter about 2 pi
+  features::Params p;
+  p.min_line_length = 6.0;
+  auto r = detect(m, p);
+  EXPECT_EQ(r.lines.size(), 2u);
+  EXPECT_EQ(r.suppressed_lines, 0);
+  p.min_line_length = 6.5;
+  r = detect(m, p);
+  EXPECT_EQ(r.lines.size(), 0u);
+  EXPECT_EQ(r.suppressed_lines, 2);
+  EXPECT_EQ(r.patch_count, 1);
+}
+
+TEST(FeatureLines, NetworksWithoutDanglingEndsAreNeverDropped) {
+  TriMesh m;
+  test::cube(m, 2);  // every corner is on three ridges
+  features::Params p;
+  p.min_line_length = 100.0;
+  auto r = detect(m, p);
+  EXPECT_EQ(r.ridge_edges, 24);
+  EXPECT_EQ(r.corners.size(), 8u);
+  EXPECT_EQ(r.patch_count, 6);
+  EXPECT_EQ(r.suppressed_lines, 0);
+}
+
 TEST(FeatureLines, PatchCountStableUnderRotation) {
   TriMesh m;
   test::cylinder(m, 40, 3);
@@ -190,6 +264,9 @@ TEST(FeatureLines, BadParametersAreRejected) {
   EXPECT_THROW(detect(m, p), InvalidInput);
   p = {};
   p.min_patch_faces = -3;
+  EXPECT_THROW(detect(m, p), InvalidInput);
+  p = {};
+  p.min_line_length = -1;
   EXPECT_THROW(detect(m, p), InvalidInput);
   TriMesh empty;
   EXPECT_THROW(detect(empty), InvalidInput);

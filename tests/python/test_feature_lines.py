@@ -107,6 +107,35 @@ def test_min_patch_faces_merges_small_patches_on_a_scan():
     assert (counts < 50).sum() <= plain["boundary_edges"]
 
 
+def lines_layer_edges(name, **kw):
+    """Feature filter on a fresh copy of a shared mesh: its dictionary and the lines layer's
+    segments as sorted coordinate pairs."""
+    ms = load(name)
+    r = features(ms, create_lines_layer=True, color_patches=False, **kw)
+    m = ms.mesh(1)  # the lines layer is the second mesh of the fresh MeshSet
+    v, e = m.vertex_matrix(), m.edge_matrix()
+    return r, {tuple(sorted((tuple(v[a]), tuple(v[b])))) for a, b in e}
+
+
+def test_min_line_length_drops_short_dangling_creases_of_a_scan_and_keeps_the_boundary():
+    """At 30 degrees the bunny scan has about a thousand corners, most on creases shorter than 1%
+    of the diagonal; min_line_length = 1% drops those with an open end (and short loops): fewer
+    ridges, corners and lines, only ridges the strict mode has, and every boundary edge stays."""
+    name = "organic/stanford-bunny.obj"
+    length = 0.01 * load(name).current_mesh().bounding_box().diagonal()
+    strict, strict_segments = lines_layer_edges(name, ridge_angle=30)
+    zero, _ = lines_layer_edges(name, ridge_angle=30, min_line_length=pymeshlab.PureValue(0.0))
+    assert zero == {**strict, "time_ms": zero["time_ms"]}
+    assert strict["suppressed_lines"] == 0
+    kept, kept_segments = lines_layer_edges(name, ridge_angle=30, min_line_length=pymeshlab.PureValue(length))
+    assert kept["suppressed_lines"] > 100
+    assert kept["ridge_edges"] + kept["suppressed_ridge_edges"] == strict["ridge_edges"]
+    assert kept["corners"] < 0.7 * strict["corners"]
+    assert kept_segments <= strict_segments
+    assert kept["boundary_edges"] == strict["boundary_edges"] > 0
+    assert kept["ridge_edges"] >= kept["boundary_edges"]
+
+
 def test_deterministic():
     ms = load("cad/fandisk.obj")
     a = features(ms)
@@ -157,7 +186,7 @@ def test_nan_coordinates_raise_and_mesh_is_unchanged():
 
 
 @pytest.mark.parametrize("bad", [dict(ridge_angle=0.0), dict(ridge_angle=190.0), dict(corner_angle=-5.0),
-                                 dict(min_patch_faces=-1)])
+                                 dict(min_patch_faces=-1), dict(min_line_length=pymeshlab.PureValue(-1.0))])
 def test_bad_parameters_raise(bad):
     ms = pymeshlab.MeshSet()
     ms.create_cube()

@@ -15,6 +15,9 @@ def add_arguments(p):
                       help="element size in percent of the bounding-box diagonal (default 1)")
     p.add_argument("--ridge-angle", type=float, default=30.0, help="ridge angle in degrees (default 30)")
     p.add_argument("--corner-angle", type=float, default=45.0, help="corner angle in degrees (default 45)")
+    p.add_argument("--min-line-length", type=float, default=None,
+                   help="ridge lines with an open end and closed ridge loops shorter than this (absolute) are "
+                        "not kept as features (default: the target length; 0 keeps every ridge)")
     p.add_argument("--max-surface-error", type=float, default=0.0,
                    help="chord-error bound for curvature adaptation, absolute (default 0 = uniform size)")
     p.add_argument("--gradation", type=float, default=1.3, help="size gradation >= 1 (default 1.3)")
@@ -33,7 +36,7 @@ def run(args) -> int:
     result = pipeline_remesh.remesh(
         ms, target_length=args.target_length, target_percent=args.target_percent, ridge_angle=args.ridge_angle,
         corner_angle=args.corner_angle, max_surface_error=args.max_surface_error, gradation=args.gradation,
-        recovery=args.recovery, progress=not args.no_progress and sys.stdout.isatty())
+        recovery=args.recovery, min_line_length=args.min_line_length, progress=not args.no_progress and sys.stdout.isatty())
     ms.save_current_mesh(args.output)
     print(json.dumps(result, indent=2, sort_keys=True))
     return 0 if result["unmeshed_sides"] == 0 else 3

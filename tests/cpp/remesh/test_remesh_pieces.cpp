@@ -1,6 +1,7 @@
 // Unit tests of the remesher's pieces.
 #include "remesh/advancing_front.h"
 #include "remesh/feature_front.h"
+#include "remesh/patch_retry.h"
 #include "remesh/size_field.h"
 #include "remesh/surface_locator.h"
 #include "remesh/triangle_geometry.h"
@@ -213,4 +214,26 @@ TEST(RemeshPieces, PolylineGapIsTheLargestDistanceBothWays) {
   EXPECT_NEAR(polyline_gap(straight, bent), 0.01, 1e-12);
   EXPECT_NEAR(polyline_gap(bent, straight), 0.01, 1e-12);
   EXPECT_NEAR(polyline_gap(straight, {Point3(0, 0, 0), Point3(1, 0, 0)}), 1.0, 1e-12);
+}
+
+TEST(RemeshPieces, PinchedPointHasTwoFansAndRemovingAPatchKeepsTheOthers) {
+  // Two triangles of patch 0 touching only at free point 0 (a bowtie), one triangle of patch 1.
+  remesh::OutputMesh out;
+  for (const Point3& p : {Point3(0, 0, 0), Point3(1, 0, 0), Point3(1, 1, 0), Point3(-1, 0, 0), Point3(-1, -1, 0),
+                          Point3(2, 0, 0)})
+    out.add_point(p, 0, remesh::PointKind::Free);
+  out.kind[1] = out.kind[2] = out.kind[5] = remesh::PointKind::Line;
+  out.faces = {{0, 1, 2}, {0, 3, 4}, {1, 5, 2}};
+  out.face_patch = {0, 0, 1};
+  out.shared_edges = {remesh::OutputMesh::edge_key(1, 2), remesh::OutputMesh::edge_key(1, 5),
+                      remesh::OutputMesh::edge_key(5, 2)};
+  EXPECT_EQ(remesh::pinched_points(out, 0), 1);
+  EXPECT_EQ(remesh::pinched_points(out, 1), 0);
+  out.faces.push_back({0, 2, 3});  // the fans join: no longer pinched
+  out.face_patch.push_back(0);
+  EXPECT_EQ(remesh::pinched_points(out, 0), 0);
+  remesh::remove_patch_faces(out, 0);
+  ASSERT_EQ(out.faces.size(), 1u);
+  EXPECT_EQ(out.face_patch[0], 1);
+  EXPECT_EQ(out.shared_edges.size(), 3u);  // patch 1's edges between line points stay taken
 }

@@ -116,3 +116,26 @@ TEST(RemeshWhole, BadInputThrows) {
   EXPECT_THROW(run(m, -1.0), InvalidInput);
   EXPECT_THROW(run(m, 10.0), InvalidInput);  // diagonal is about 3.46
 }
+
+TEST(RemeshWhole, PeakSharperThanTheElementsGetsAnOutputVertexAtItsTip) {
+  // A 1 x 1 grid of spacing 0.05 with a cone of radius 0.3 and height 0.15 in the middle (no
+  // ridge at 70 degrees): elements of 0.25 would cut its tip off; a free point moves onto it.
+  TriMesh m;
+  test::grid(m, 20);
+  const Point3 tip(0.5, 0.5, 0.15);
+  for (auto& v : m.vert) {
+    const double r = (v.P() - Point3(0.5, 0.5, 0)).Norm();
+    v.P()[2] = 0.15 * std::max(0.0, 1.0 - r / 0.3);
+  }
+  remesh::Params p;
+  p.target_length = 0.25;
+  p.ridge_angle_deg = 70;
+  TriMesh out;
+  const remesh::Result r = remesh::remesh(m, p, out);
+  EXPECT_EQ(r.unmeshed_sides, 0);
+  EXPECT_GE(r.snapped, 1);
+  double closest = 1e9;
+  for (const auto& v : out.vert) closest = std::min(closest, (v.cP() - tip).Norm());
+  EXPECT_LE(closest, 1e-12);
+  EXPECT_GE(r.min_angle_deg, 10.0);
+}

@@ -1,0 +1,46 @@
+#include "remesh/patch_retry.h"
+
+#include <unordered_map>
+
+namespace mr::remesh {
+
+int pinched_points(const OutputMesh& out, int patch) {
+  // Per free point, the sides opposite it in its faces: one fan links them into one chain.
+  std::unordered_map<int, std::vector<std::array<int, 2>>> link;
+  for (size_t f = 0; f < out.faces.size(); ++f) {
+    if (out.face_patch[f] != patch) continue;
+    const auto& t = out.faces[f];
+    for (int z = 0; z < 3; ++z)
+      if (out.kind[t[z]] == PointKind::Free) link[t[z]].push_back({t[(z + 1) % 3], t[(z + 2) % 3]});
+  }
+  int pinched = 0;
+  for (const auto& [v, sides] : link) {
+    // Components of the link graph by union-find over its points.
+    std::unordered_map<int, int> parent;
+    auto find = [&](int x) {
+      if (!parent.count(x)) parent[x] = x;
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    for (const auto& s : sides) parent[find(s[0])] = find(s[1]);
+    int roots = 0;
+    for (const auto& [x, p] : parent) roots += find(x) == x ? 1 : 0;
+    if (roots > 1) ++pinched;
+  }
+  return pinched;
+}
+
+void remove_patch_faces(OutputMesh& out, int patch) {
+  std::vector<std::array<int, 3>> faces;
+  std::vector<int> face_patch;
+  for (size_t f = 0; f < out.faces.size(); ++f)
+    if (out.face_patch[f] != patch) { faces.push_back(out.faces[f]); face_patch.push_back(out.face_patch[f]); }
+  out.faces = std::move(faces);
+  out.face_patch = std::move(face_patch);
+  out.shared_edges.clear();
+  for (const auto& t : out.faces)
+    for (int z = 0; z < 3; ++z)
+      if (out.is_shared(t[z], t[(z + 1) % 3])) out.shared_edges.insert(OutputMesh::edge_key(t[z], t[(z + 1) % 3]));
+}
+
+}  // namespace mr::remesh

@@ -1,0 +1,16 @@
+// What a patch's front left behind, and taking it back: a patch whose front could not close
+// (unmeshed sides) or pinched a free point (its faces around it form two fans, a non-manifold
+// vertex) is meshed again with smaller elements, which pass thin parts of the surface.
+#pragma once
+
+#include "remesh/output_mesh.h"
+
+namespace mr::remesh {
+
+/// Free points of `patch` whose faces do not form one fan (non-manifold vertices).
+int pinched_points(const OutputMesh& out, int patch);
+
+/// Removes the faces of `patch` (its points stay, unused) and the shared edges only they used.
+void remove_patch_faces(OutputMesh& out, int patch);
+
+}  // namespace mr::remesh
