@@ -133,22 +133,28 @@ void SurfaceLocator::faces_near(const Point3& p, double radius, std::vector<int>
   std::sort(out.begin(), out.end());
 }
 
+// Keeps face f in `best` if p is closer to it; ties (a point on a shared side or corner) go to
+// the face whose normal agrees best. Returns the distance from p to f.
+double SurfaceLocator::consider_face(int f, const Point3& p, const Point3& normal, Projection& best) const {
+  const Surface& s = surface_;
+  std::array<double, 3> bary;
+  const auto& t = s.faces[f];
+  const Point3 q = closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary);
+  const double d = (q - p).Norm();
+  const bool better = d < best.distance - 1e-12 * (1 + d) ||
+                      (d <= best.distance + 1e-12 * (1 + d) && best.face >= 0 && normal.SquaredNorm() > 0 &&
+                       s.face_normal[f] * normal > s.face_normal[best.face] * normal);
+  if (better) { best.face = f; best.point = q; best.bary = bary; best.distance = d; }
+  return d;
+}
+
 Projection SurfaceLocator::locate(const Point3& p, int group, const Point3& normal, int start, double radius,
                                   SearchStep* step) const {
   Projection best = locate_within(p, group, normal, start, radius, step);
   if (best.face >= 0) return best;
   const Surface& s = surface_;
   best.distance = std::numeric_limits<double>::max();
-  auto consider = [&](int f) {
-    std::array<double, 3> bary;
-    const auto& t = s.faces[f];
-    Point3 q = closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary);
-    const double d = (q - p).Norm();
-    const bool better = d < best.distance - 1e-12 * (1 + d) ||
-                        (d <= best.distance + 1e-12 * (1 + d) && best.face >= 0 && normal.SquaredNorm() > 0 &&
-                         s.face_normal[f] * normal > s.face_normal[best.face] * normal);
-    if (better) { best.face = f; best.point = q; best.bary = bary; best.distance = d; }
-  };
+  auto consider = [&](int f) { consider_face(f, p, normal, best); };
   // 3. Brute force over the allowed faces; without an agreeing normal, any face of the group.
   for (int f = 0; f < int(s.faces.size()); ++f)
     if (accept(f, group, normal)) consider(f);
@@ -164,18 +170,7 @@ Projection SurfaceLocator::locate_within(const Point3& p, int group, const Point
   const Surface& s = surface_;
   Projection best;
   best.distance = std::numeric_limits<double>::max();
-  auto consider = [&](int f) {
-    std::array<double, 3> bary;
-    const auto& t = s.faces[f];
-    Point3 q = closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary);
-    const double d = (q - p).Norm();
-    // Ties (a point on a shared side or corner) go to the face whose normal agrees best.
-    const bool better = d < best.distance - 1e-12 * (1 + d) ||
-                        (d <= best.distance + 1e-12 * (1 + d) && best.face >= 0 && normal.SquaredNorm() > 0 &&
-                         s.face_normal[f] * normal > s.face_normal[best.face] * normal);
-    if (better) { best.face = f; best.point = q; best.bary = bary; best.distance = d; }
-    return d;
-  };
+  auto consider = [&](int f) { return consider_face(f, p, normal, best); };
 
   // 1. Walk: breadth-first over neighbours of the start face, only through faces within `radius`.
   if (start >= 0 && start < int(s.faces.size())) {

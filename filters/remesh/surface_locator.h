@@ -67,6 +67,7 @@ private:
   Key key(long i, long j, long k) const;
   std::array<long, 3> cell_of(const Point3& p) const;
   bool accept(int f, int group, const Point3& normal) const;
+  double consider_face(int f, const Point3& p, const Point3& normal, Projection& best) const;
 
   const Surface& surface_;
   double cell_;

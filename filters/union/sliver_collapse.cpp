@@ -77,6 +77,14 @@ private:
   static std::pair<int, int> ekey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
   V3 P(int v) const { return r_.vertices[v]; }
   double min_angle(int f) const { return face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2])); }
+  /// Face f with its corner x at `moved` (into q); false if it would degenerate or turn over.
+  bool moved_face(int f, int x, const V3& moved, V3 q[3]) const {
+    const auto& t = r_.faces[f];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? moved : P(t[z]);
+    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+    return norm(n_new) > 0 && dot(n_old, n_new) > 0.1 * norm(n_old) * norm(n_new);
+  }
   /// Moves v onto w if allowed; with `apply` false only checks, and `dv` gets the volume change.
   bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
   bool try_flip(int f, int z);      // flips side z of face f
@@ -400,12 +408,8 @@ bool Collapser::try_relocate(int x) {
   const V3 moved{o[0] + delta[0], o[1] + delta[1], o[2] + delta[2]};
   double before = 1e300, after = 1e300;
   for (int f : fx) {
-    const auto& t = r_.faces[f];
     V3 q[3];
-    for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? moved : P(t[z]);
-    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
-    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
-    if (!(norm(n_new) > 0) || dot(n_old, n_new) <= 0.1 * norm(n_old) * norm(n_new)) return false;
+    if (!moved_face(f, x, moved, q)) return false;
     const double a = face_min_angle(q[0], q[1], q[2]);
     if (!cut_[f] && a < threshold_ && a < min_angle(f)) return false;
     before = std::min(before, min_angle(f));
@@ -441,12 +445,8 @@ bool Collapser::compensate(int x, double dv6) {
   if (norm(delta) > max_dev_) return false;
   const V3 moved{o[0] + delta[0], o[1] + delta[1], o[2] + delta[2]};
   for (int f : fx) {
-    const auto& t = r_.faces[f];
     V3 q[3];
-    for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? moved : P(t[z]);
-    const V3 n_old = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
-    const V3 n_new = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
-    if (!(norm(n_new) > 0) || dot(n_old, n_new) <= 0.1 * norm(n_old) * norm(n_new)) return false;
+    if (!moved_face(f, x, moved, q)) return false;
     if (face_min_angle(q[0], q[1], q[2]) < std::min(min_angle(f), threshold_)) return false;
   }
   r_.vertices[x] = moved;

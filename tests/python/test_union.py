@@ -395,18 +395,23 @@ def test_cli_union_components_of_one_file(tmp_path):
     assert json.loads(proc.stdout)["bodies"] == 9
 
 
+def benchmark_cluster(n, subdiv):
+    """bench_union.py's cluster: n icospheres of radius 0.5 at seed-1 random centres in a cube of
+    side 0.9 n^(1/3), as one layer of components; returns it and manifold3d's union volume."""
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(radius=0.5, subdiv=subdiv)
+    v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
+    centres = np.random.default_rng(1).random((n, 3)) * n ** (1 / 3) * 0.9
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(np.concatenate([v + c for c in centres]),
+                               np.concatenate([f + i * len(v) for i in range(n)])))
+    return ms, reference([pymeshlab.Mesh(v + c, f) for c in centres])
+
+
 def test_sliver_step_on_a_ten_sphere_cluster_leaves_no_face_under_5_degrees():
     # Icospheres (smallest angle 54 deg); the raw cut has about 400 faces under 5 deg.
     # Measured after the default sliver step: smallest angle 10.0 deg, volume 4e-15.
-    ms = pymeshlab.MeshSet()
-    ms.create_sphere(radius=0.5, subdiv=3)
-    v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
-    centres = np.random.default_rng(1).random((10, 3)) * 10 ** (1 / 3) * 0.9
-    ms = pymeshlab.MeshSet()
-    ms.add_mesh(pymeshlab.Mesh(np.concatenate([v + c for c in centres]),
-                               np.concatenate([f + i * len(v) for i in range(10)])))
-    parts = [pymeshlab.Mesh(v + c, f) for c in centres]
-    ref = reference(parts)
+    ms, ref = benchmark_cluster(10, subdiv=3)
     r = unite(ms, bodies=COMPONENTS)
     assert r["bodies"] == 10
     assert angles(ms.mesh(1)).min() >= 5.0
@@ -507,15 +512,7 @@ def test_sliver_step_on_a_coarse_fifty_sphere_cluster_keeps_the_volume():
     # cut has about 1400 faces under 5 deg. Measured after the default sliver step: 4 faces
     # under 5 deg left (smallest 1.9 deg), volume -2.2e-7. Asserted: the budget holds and
     # almost all slivers are gone.
-    ms = pymeshlab.MeshSet()
-    ms.create_sphere(radius=0.5, subdiv=2)
-    v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
-    centres = np.random.default_rng(1).random((50, 3)) * 50 ** (1 / 3) * 0.9
-    ms = pymeshlab.MeshSet()
-    ms.add_mesh(pymeshlab.Mesh(np.concatenate([v + c for c in centres]),
-                               np.concatenate([f + i * len(v) for i in range(50)])))
-    parts = [pymeshlab.Mesh(v + c, f) for c in centres]
-    ref = reference(parts)
+    ms, ref = benchmark_cluster(50, subdiv=2)
     unite(ms, bodies=COMPONENTS)
     assert check_union(ms, 1) == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL * 1.01)
     assert (angles(ms.mesh(1)).min(1) < 5.0).sum() <= 10
