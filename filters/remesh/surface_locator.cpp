@@ -101,6 +101,12 @@ SurfaceLocator::SurfaceLocator(const Surface& surface, double cell) : surface_(s
         }
   }
   stamp_.assign(surface.faces.size(), 0);
+  double area = 0;
+  for (size_t f = 0; f < surface.faces.size(); ++f) {
+    const auto& t = surface.faces[f];
+    area += 0.5 * ((surface.points[t[1]] - surface.points[t[0]]) ^ (surface.points[t[2]] - surface.points[t[0]])).Norm();
+  }
+  mean_face_area_ = surface.faces.empty() ? 0 : area / double(surface.faces.size());
 }
 
 SurfaceLocator::Key SurfaceLocator::key(long i, long j, long k) const {
@@ -177,7 +183,11 @@ Projection SurfaceLocator::locate_within(const Point3& p, int group, const Point
     if (++stamp_value_ == std::numeric_limits<int>::max()) { std::fill(stamp_.begin(), stamp_.end(), 0); stamp_value_ = 1; }
     std::vector<int> queue{start};
     stamp_[start] = stamp_value_;
-    const size_t max_visits = 256;
+    // Enough visits to cover the faces within `radius` (a disc of pi r^2 on a flat surface): an
+    // input much finer than the elements (832k faces at 1% elements) otherwise sends every
+    // search on to the grid, whose cells then hold hundreds of faces each.
+    const double disc = mean_face_area_ > 0 ? 3.2 * radius * radius / mean_face_area_ : 0;
+    const size_t max_visits = size_t(std::clamp(disc, 256.0, 65536.0));
     for (size_t head = 0; head < queue.size() && head < max_visits; ++head) {
       const int f = queue[head];
       double d = std::numeric_limits<double>::max();

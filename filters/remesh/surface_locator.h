@@ -71,6 +71,7 @@ private:
 
   const Surface& surface_;
   double cell_;
+  double mean_face_area_ = 0;
   Point3 origin_;
   std::unordered_map<Key, std::vector<int>> grid_;
   mutable std::vector<int> stamp_;  // per-face visit marks for the walk and the grid query
