@@ -164,10 +164,10 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
     // A front that could not close or pinched a point (thin parts of a scan): again with
     // smaller elements, which pass there: each time 0.9 x the size, at most twice.
     // (Armadillo at 1%: one retry; 0.75 at once left 71% of its edges in range, 0.9 leaves 86%.)
-    // A retry that leaves as much open as the attempt before it is the last one.
+    // A retry that does not halve what the attempt before it left open is the last one.
     int problems = r.unmeshed_sides + pinched_points(out, patch), before = std::numeric_limits<int>::max();
     for (double scale = kRetryScale; !fp_patch.thin_patch && scale >= kMinRetryScale && problems > 0 &&
-                                     problems < before;
+                                     2 * problems <= before;
          scale *= kRetryScale) {
       remove_patch_faces(out, patch);
       const SizeField smaller = size.scaled(scale);
