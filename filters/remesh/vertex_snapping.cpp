@@ -43,11 +43,13 @@ int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& locator, const S
   for (size_t v = 0; v < out.points.size(); ++v)
     if (out_rings.begin[v] < out_rings.begin[v + 1]) grid.insert(int(v), out.points[v]);
 
-  // Distance from p to the output faces around points within r of it (infinity if none).
-  auto deviation = [&](const Point3& p, double r) {
+  // Distance from p to the output faces around points within r of it (infinity if none). With
+  // `enough`, the search stops at the first face that close: the scan over every input vertex
+  // only asks whether a vertex is farther than that, and nearly all are not.
+  auto deviation = [&](const Point3& p, double r, double enough = -1.0) {
     double best = std::numeric_limits<double>::infinity();
     grid.visit(p, r, [&](int v) {
-      for (int k = out_rings.begin[v]; k < out_rings.begin[v + 1]; ++k)
+      for (int k = out_rings.begin[v]; k < out_rings.begin[v + 1] && best > enough; ++k)
         best = std::min(best, face_distance(out, out_rings.item[k], p));
     });
     return best;
@@ -55,7 +57,7 @@ int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& locator, const S
   std::vector<std::pair<double, int>> far;
   for (size_t v = 0; v < input.points.size(); ++v) {
     const double h = size.at_vertex(int(v));
-    const double d = deviation(input.points[v], h);
+    const double d = deviation(input.points[v], h, params.min_deviation * h);
     if (std::isfinite(d) && d > params.min_deviation * h) far.push_back({d / h, int(v)});
   }
   std::sort(far.begin(), far.end(), std::greater<>());
