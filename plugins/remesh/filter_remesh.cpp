@@ -96,6 +96,10 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
   p.ridge_angle_deg = params.getFloat("ridge_angle");
   p.corner_angle_deg = params.getFloat("corner_angle");
   p.min_line_length = params.getAbsPerc("min_line_length");
+  // The core reads a negative length as "the target length" (its Python default); here a
+  // negative value can only be a mistake.
+  if (p.min_line_length < 0)
+    throw MLException(QString(name) + ": min_line_length must be >= 0 (0 keeps every ridge)");
   p.max_surface_error = params.getAbsPerc("max_surface_error");
   p.gradation = params.getFloat("gradation");
   const int recovery = params.getEnum("recovery");

@@ -363,7 +363,18 @@ def test_bad_input_raises_and_changes_nothing():
         ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(0.0))
     with raises_on(ms, "larger than the model"):
         ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(2 * diag))
-    assert ms.mesh_number() == 1
+    with raises_on(ms, "min_line_length must be >= 0"):
+        ms.meshing_advancing_front_remesh(min_line_length=pymeshlab.PureValue(-1.0))
+    with raises_on(ms, "min_line_length must be finite"):
+        ms.meshing_advancing_front_remesh(min_line_length=pymeshlab.PureValue(float("nan")))
+    source = pymeshlab.Mesh(np.array([[0, 0, 0], [1, 1, 1]], float), edge_matrix=np.array([[0, 1]], dtype=np.int32),
+                            v_scalar_array=np.array([np.nan, 1.0]))
+    ms.add_mesh(source, "bad source")
+    ms.set_current_mesh(0)
+    with raises_on(ms, "quality \\(size\\) > 0"):
+        ms.meshing_advancing_front_remesh(use_size_source=True, size_source=1)
+    assert ms.mesh_number() == 2
+    ms.set_current_mesh(0)
     assert_unchanged(before, ms.current_mesh())
 
     cloud = pymeshlab.MeshSet()
