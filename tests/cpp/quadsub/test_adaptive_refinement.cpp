@@ -1,5 +1,6 @@
 #include "common/errors.h"
 #include "quadsub/adaptive_refinement.h"
+#include "quad_shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -15,22 +16,7 @@ namespace {
 
 using Polygons = std::vector<std::vector<int>>;
 
-// Regular n x n grid of quads on [0,1]^2 with z = f(x, y).
-template <class F>
-QuadMesh grid(int n, F f) {
-  QuadMesh m;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      double x = double(i) / n, y = double(j) / n;
-      m.points.push_back(Point3(x, y, f(x, y)));
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      int a = j * (n + 1) + i;
-      m.quads.push_back({a, a + 1, a + n + 2, a + n + 1});
-    }
-  return m;
-}
+using test::grid;
 
 double flat(double, double) { return 0.0; }
 
@@ -43,11 +29,7 @@ QuadMesh rounded_cube(int levels = 2) {
   return subdivide(pts, faces, {}, p).mesh;
 }
 
-Polygons polygons(const QuadMesh& m) {
-  Polygons out;
-  for (const auto& q : m.quads) out.push_back({q[0], q[1], q[2], q[3]});
-  return out;
-}
+using test::polygons;
 
 Point3 centroid(const QuadMesh& m, int q) {
   Point3 c(0, 0, 0);

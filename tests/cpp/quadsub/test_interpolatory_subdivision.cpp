@@ -1,5 +1,6 @@
 #include "common/errors.h"
 #include "quadsub/interpolatory_subdivision.h"
+#include "quad_shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -11,55 +12,17 @@ using namespace mr;
 using namespace mr::quadsub;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using test::grid;
+using test::kPi;
+using test::polygons;
 
 // n sectors of k x k quads glued around one centre vertex of valence n, vertices jittered.
 QuadMesh star(int n, int k, unsigned seed) {
-  QuadMesh m;
-  std::map<std::pair<int, std::pair<int, int>>, int> index;  // (sector, (a, b)) -> vertex
-  auto vertex = [&](int s, int a, int b) {
-    // a lattice point on a sector border belongs to the neighbouring sector as well
-    if (a == 0 && b == 0) s = 0;
-    else if (a == 0) { s = (s + 1) % n; a = b; b = 0; }
-    auto key = std::make_pair(s, std::make_pair(a, b));
-    auto it = index.find(key);
-    if (it != index.end()) return it->second;
-    double t0 = 2 * kPi * s / n, t1 = 2 * kPi * (s + 1) / n;
-    Point3 p(a * std::cos(t0) + b * std::cos(t1), a * std::sin(t0) + b * std::sin(t1), 0);
-    m.points.push_back(p);
-    return index[key] = int(m.points.size()) - 1;
-  };
-  for (int s = 0; s < n; ++s)
-    for (int a = 0; a < k; ++a)
-      for (int b = 0; b < k; ++b)
-        m.quads.push_back({vertex(s, a, b), vertex(s, a + 1, b), vertex(s, a + 1, b + 1), vertex(s, a, b + 1)});
+  QuadMesh m = test::sector_fan(n, k);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> jitter(-0.15, 0.15);
   for (auto& p : m.points) p += Point3(jitter(rng), jitter(rng), 0.3 * std::sin(p[0]) * std::cos(p[1]) + jitter(rng));
   return m;
-}
-
-// Regular (n+1) x (n+1) grid on [0,1]^2 with z = f(x, y).
-template <class F>
-QuadMesh grid(int n, F f, double x0 = 0) {
-  QuadMesh m;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      double x = x0 + double(i) / n, y = double(j) / n;
-      m.points.push_back(Point3(x, y, f(x, y)));
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      int a = j * (n + 1) + i;
-      m.quads.push_back({a, a + 1, a + n + 2, a + n + 1});
-    }
-  return m;
-}
-
-std::vector<std::vector<int>> polygons(const QuadMesh& m) {
-  std::vector<std::vector<int>> out;
-  for (const auto& q : m.quads) out.push_back({q[0], q[1], q[2], q[3]});
-  return out;
 }
 
 double bicubic(double x, double y) { return 0.3 * x * x * x - x * x * y + 0.7 * y * y * y + 0.2 * x * y * y * y + x - y; }
@@ -226,24 +189,8 @@ namespace {
 // A cone z = 1 - |(x, y)| over a fan of n sectors of k x k quads around its tip (vertex 0):
 // the lattice lines from the tip along sector borders are the cone's straight generators.
 QuadMesh cone(int n, int k) {
-  QuadMesh m;
-  std::map<std::pair<int, std::pair<int, int>>, int> index;
-  auto vertex = [&](int s, int a, int b) {
-    if (a == 0 && b == 0) s = 0;
-    else if (a == 0) { s = (s + 1) % n; a = b; b = 0; }
-    auto key = std::make_pair(s, std::make_pair(a, b));
-    auto it = index.find(key);
-    if (it != index.end()) return it->second;
-    double t0 = 2 * kPi * s / n, t1 = 2 * kPi * (s + 1) / n;
-    Point3 p(a * std::cos(t0) + b * std::cos(t1), a * std::sin(t0) + b * std::sin(t1), 0);
-    p[2] = 1 - std::hypot(p[0], p[1]);
-    m.points.push_back(p);
-    return index[key] = int(m.points.size()) - 1;
-  };
-  for (int s = 0; s < n; ++s)
-    for (int a = 0; a < k; ++a)
-      for (int b = 0; b < k; ++b)
-        m.quads.push_back({vertex(s, a, b), vertex(s, a + 1, b), vertex(s, a + 1, b + 1), vertex(s, a, b + 1)});
+  QuadMesh m = test::sector_fan(n, k);
+  for (auto& p : m.points) p[2] = 1 - std::hypot(p[0], p[1]);
   return m;
 }
 
