@@ -114,7 +114,7 @@ int valence_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed
   });
 }
 
-int smooth_pass(OutputMesh& out, const SurfaceLocator& locator) {
+int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vector<char>& pinned) {
   const size_t nv = out.points.size();
   std::vector<int> begin(nv + 1, 0), ring;
   for (const auto& f : out.faces) for (int v : f) begin[v + 1]++;
@@ -125,7 +125,7 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator) {
   const Surface& s = locator.surface();
   int moves = 0;
   for (size_t v = 0; v < nv; ++v) {
-    if (out.kind[v] != PointKind::Free || begin[v] == begin[v + 1]) continue;
+    if (out.kind[v] != PointKind::Free || pinned[v] || begin[v] == begin[v + 1]) continue;
     const int patch = out.face_patch[ring[begin[v]]];
     Point3 centre(0, 0, 0);
     int count = 0;
@@ -158,7 +158,9 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator) {
 }  // namespace
 
 ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
-                               const SurfaceLocator& locator, int iterations) {
+                               const SurfaceLocator& locator, int iterations, const std::vector<int>& pinned) {
+  std::vector<char> is_pinned(out.points.size(), 0);
+  for (int v : pinned) is_pinned[v] = 1;
   std::unordered_set<std::uint64_t> fixed;
   for (const auto& e : feature_edges) fixed.insert(undirected(e[0], e[1]));
   ImprovementResult r;
@@ -167,7 +169,7 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
   const double floor = std::max(worst, kValenceFloor);
   for (int it = 0; it < iterations; ++it) {
     const int swaps = swap_pass(out, fixed) + valence_pass(out, fixed, floor);
-    const int moves = smooth_pass(out, locator);
+    const int moves = smooth_pass(out, locator, is_pinned);
     r.swaps += swaps;
     r.moves += moves;
     if (swaps == 0 && moves == 0) break;

@@ -18,8 +18,9 @@ struct ImprovementResult {
   int moves = 0;
 };
 
-/// `feature_edges` are output edges that must stay (either orientation).
+/// `feature_edges` are output edges that must stay (either orientation); `pinned` points (e.g.
+/// snapped onto input vertices) never move.
 ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
-                               const SurfaceLocator& locator, int iterations);
+                               const SurfaceLocator& locator, int iterations, const std::vector<int>& pinned = {});
 
 }  // namespace mr::remesh

@@ -33,9 +33,9 @@ double face_distance(const OutputMesh& out, int f, const Point3& p) {
 
 }  // namespace
 
-int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& locator, const SizeField& size,
+std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& locator, const SizeField& size,
                          const SnapParams& params) {
-  if (out.faces.empty()) return 0;
+  if (out.faces.empty()) return {};
   const Surface& input = locator.surface();
   const Rings out_rings(out.points.size(), out.faces);
   const Rings in_rings(input.points.size(), input.faces);
@@ -84,7 +84,6 @@ int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& locator, const S
   };
 
   std::vector<char> moved(out.points.size(), 0);
-  int snapped = 0;
   for (const auto& [ratio, v] : far) {
     const Point3& target = input.points[v];
     const double h = size.at_vertex(v);
@@ -139,10 +138,12 @@ int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& locator, const S
       out.host[q] = in_rings.item[in_rings.begin[v]];
       grid.insert(q, target);  // found from its new place too (the old entry only costs a visit)
       moved[q] = 1;
-      ++snapped;
       break;
     }
   }
+  std::vector<int> snapped;
+  for (size_t q = 0; q < moved.size(); ++q)
+    if (moved[q]) snapped.push_back(int(q));
   return snapped;
 }
 

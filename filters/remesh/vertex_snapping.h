@@ -9,6 +9,8 @@
 #include "remesh/size_field.h"
 #include "remesh/surface_locator.h"
 
+#include <vector>
+
 namespace mr::remesh {
 
 // Measured at 1% with min_line_length = target: snapping from 0.1 x size on costs rocker-arm 2% of
@@ -23,10 +25,10 @@ struct SnapParams {
   double min_angle_deg = 10.0; ///< faces around a moved point keep at least this angle (or their old one)
 };
 
-/// Moves free points onto far input vertices (interior to one patch), farthest first; returns how
-/// many moved.
+/// Moves free points onto far input vertices (interior to one patch), farthest first; returns the
+/// points that moved, ascending.
 /// Points keep to their patch and get the input vertex's face there as host.
-int snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& input, const SizeField& size,
+std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& input, const SizeField& size,
                          const SnapParams& params = {});
 
 }  // namespace mr::remesh
