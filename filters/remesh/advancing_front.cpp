@@ -549,6 +549,11 @@ double PatchMesher::estimated_faces() const {
 }
 
 FrontResult PatchMesher::run(std::vector<FrontSide> front) {
+  for (int f : params_.meshed_faces) {
+    const auto& t = out_.faces[f];
+    face_grid_.add(f, (out_.points[t[0]] + out_.points[t[1]] + out_.points[t[2]]) / 3.0);
+    for (int z = 0; z < 3; ++z) used_.insert(directed(t[z], t[(z + 1) % 3]));
+  }
   for (const auto& s : front)
     if (s[0] != s[1] && !front_.count(directed(s[0], s[1]))) add_side(s[0], s[1]);
   if (params_.thin_patch) {
@@ -575,6 +580,8 @@ FrontResult PatchMesher::run(std::vector<FrontSide> front) {
   }
   if (!front_.empty()) close_loops(kMaxLastResortLoop);
   result_.unmeshed_sides = int(front_.size());
+  for (const auto& [key, id] : front_) result_.open_sides.push_back({sides_[id].a, sides_[id].b});
+  std::sort(result_.open_sides.begin(), result_.open_sides.end());  // front_ is a hash map
   return result_;
 }
 

@@ -26,19 +26,23 @@ struct FrontParams {
   /// The patch is narrower than the elements (a thin strip between two lines): its boundary
   /// loops are triangulated directly by ear clipping, one layer of faces, no new points.
   bool thin_patch = false;
-};
-
-struct FrontResult {
-  int faces = 0;
-  int new_points = 0;
-  int unmeshed_sides = 0;   ///< front sides left when the front could not close
-  long iterations = 0;
-  bool iteration_limit = false;
+  /// Faces of the output already there around a hole being meshed again: new faces may neither
+  /// cover them nor repeat their edges.
+  std::vector<int> meshed_faces;
 };
 
 /// Directed front side a->b: the unmeshed part of the patch lies to its left (seen from the
 /// surface normal), i.e. the side is oriented like the input faces bounding that part.
 using FrontSide = std::array<int, 2>;
+
+struct FrontResult {
+  int faces = 0;
+  int new_points = 0;
+  int unmeshed_sides = 0;   ///< front sides left when the front could not close
+  std::vector<FrontSide> open_sides;  ///< those sides, sorted
+  long iterations = 0;
+  bool iteration_limit = false;
+};
 
 /// Fills patch `patch` of the locator's surface starting from `front`; appends points and faces
 /// to `out`. A patch with an empty front gets a seed triangle. Never loops forever: the number

@@ -1,10 +1,11 @@
 #include "remesh/patch_retry.h"
 
+#include <algorithm>
 #include <unordered_map>
 
 namespace mr::remesh {
 
-int pinched_points(const OutputMesh& out, int patch) {
+std::vector<int> pinched_points(const OutputMesh& out, int patch) {
   // Per free point, the sides opposite it in its faces: one fan links them into one chain.
   std::unordered_map<int, std::vector<std::array<int, 2>>> link;
   for (size_t f = 0; f < out.faces.size(); ++f) {
@@ -13,7 +14,7 @@ int pinched_points(const OutputMesh& out, int patch) {
     for (int z = 0; z < 3; ++z)
       if (out.kind[t[z]] == PointKind::Free) link[t[z]].push_back({t[(z + 1) % 3], t[(z + 2) % 3]});
   }
-  int pinched = 0;
+  std::vector<int> pinched;
   for (const auto& [v, sides] : link) {
     // Components of the link graph by union-find over its points.
     std::unordered_map<int, int> parent;
@@ -25,8 +26,9 @@ int pinched_points(const OutputMesh& out, int patch) {
     for (const auto& s : sides) parent[find(s[0])] = find(s[1]);
     int roots = 0;
     for (const auto& [x, p] : parent) roots += find(x) == x ? 1 : 0;
-    if (roots > 1) ++pinched;
+    if (roots > 1) pinched.push_back(v);
   }
+  std::sort(pinched.begin(), pinched.end());  // link is a hash map: fix the order
   return pinched;
 }
 

@@ -5,10 +5,12 @@
 
 #include "remesh/output_mesh.h"
 
+#include <vector>
+
 namespace mr::remesh {
 
-/// Free points of `patch` whose faces do not form one fan (non-manifold vertices).
-int pinched_points(const OutputMesh& out, int patch);
+/// Free points of `patch` whose faces do not form one fan (non-manifold vertices), ascending.
+std::vector<int> pinched_points(const OutputMesh& out, int patch);
 
 /// Removes the faces of `patch` (its points stay, unused) and the shared edges only they used.
 void remove_patch_faces(OutputMesh& out, int patch);

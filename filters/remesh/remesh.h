@@ -50,6 +50,7 @@ struct Result {
   int unmeshed_sides = 0;       ///< front sides that could not be closed (0 = complete)
   int unmeshed_patches = 0;     ///< patches with unmeshed sides
   int retried_patches = 0;      ///< patch meshings repeated with smaller elements
+  int local_repairs = 0;        ///< holes around open sides or pinched points meshed again, smaller
   int swaps = 0, smoothed = 0;  ///< post-pass moves
   int snapped = 0;              ///< free points moved onto input vertices the output cut off
   double min_angle_deg = 0;     ///< worst triangle angle

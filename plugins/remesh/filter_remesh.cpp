@@ -165,6 +165,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"unmeshed_sides", QVariant(r.unmeshed_sides)},
       {"unmeshed_patches", QVariant(r.unmeshed_patches)},
       {"retried_patches", QVariant(r.retried_patches)},
+      {"local_repairs", QVariant(r.local_repairs)},
       {"merged_lines", QVariant(r.merged_lines)},
       {"thin_patches", QVariant(r.thin_patches)},
       {"swaps", QVariant(r.swaps)},
