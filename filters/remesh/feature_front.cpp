@@ -118,6 +118,20 @@ std::vector<char> find_thin_patches(const features::Result& fr, const Surface& s
   return thin;
 }
 
+// The line's polyline and its points with their arc lengths along it, for sliding them later.
+LinePath line_path(const Surface& s, const VertexFaces& vf, const std::vector<int>& chain, const std::vector<int>& pts,
+                   std::vector<double> arc, bool may_slide) {
+  LinePath path;
+  for (int v : chain) path.polyline.push_back(s.points[v]);
+  for (size_t j = 0; j + 1 < chain.size(); ++j)
+    path.segment_host.push_back(vf.begin[chain[j]] < vf.begin[chain[j] + 1] ? vf.face[vf.begin[chain[j]]] : -1);
+  path.points = pts;
+  path.arc = std::move(arc);
+  path.slidable.assign(pts.size(), may_slide ? 1 : 0);
+  path.slidable.front() = path.slidable.back() = 0;
+  return path;
+}
+
 }  // namespace
 
 double polyline_gap(const std::vector<Point3>& a, const std::vector<Point3>& b) {
@@ -166,6 +180,8 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
     for (size_t i = 0; i < fr.lines.size(); ++i)
       if ((slivers.twin_of[i] >= 0) == (pass == 1)) order.push_back(int(i));
 
+  std::vector<char> has_twin(fr.lines.size(), 0);
+  for (int t : slivers.twin_of) if (t >= 0) has_twin[t] = 1;
   for (int line_id : order) {
     const auto& line = fr.lines[line_id];
     const int twin = slivers.twin_of[line_id];
@@ -209,9 +225,13 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       ff.merged_lines++;
     }
     if (twin < 0) pts[0] = end_point(chain.front());
+    std::vector<double> along(segs + 1, 0.0), arc(n + 1, 0.0);  // arc lengths of input and output points
+    for (size_t j = 0; j < segs; ++j) along[j + 1] = along[j] + lengths[j];
+    arc[n] = along[segs];
     for (int i = 1; i < n && twin < 0; ++i) {
       size_t seg; double u;
       locate_on_line(double(i) / n, seg, u);
+      arc[i] = along[seg] + u * lengths[seg];
       const Point3 p = s.points[chain[seg]] * (1 - u) + s.points[chain[seg + 1]] * u;
       const int v0 = chain[seg];
       const int host = vf.begin[v0] < vf.begin[v0 + 1] ? vf.face[vf.begin[v0]] : -1;
@@ -219,6 +239,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
     }
     if (twin < 0) pts[n] = line.closed ? pts[0] : end_point(chain.back());
     line_points[line_id] = pts;
+    if (twin < 0) ff.line_paths.push_back(line_path(s, vf, chain, pts, arc, has_twin[line_id] == 0));
 
     for (int i = 0; i < n; ++i) {
       if (twin < 0) ff.feature_edges.push_back({pts[i], pts[i + 1]});

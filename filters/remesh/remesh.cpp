@@ -181,7 +181,7 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   }
 
   progress(params, 80, "Improving: swaps and smoothing");
-  const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations);
+  const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations, ff.line_paths);
   result.swaps = ir.swaps;
   result.smoothed = ir.moves;
 

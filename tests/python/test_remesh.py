@@ -59,15 +59,14 @@ def input_ridges(name: str, min_line_length: float):
 # Acceptance items a mesh does not meet yet at 1% / 30 degrees / min_line_length = target, with the
 # measured numbers (benchmarks/remesh.md); each is asserted at the weaker bound given instead.
 SHORTFALLS = {
-    # worst angle 17.44 vs 19.18 degrees: a triangle from a 0.33 x target line segment at a crease tip
-    "cad/fandisk.obj": {"worst_angle": 17.0},
     # 1st-percentile angle 1.087 vs 1.341: the two thin rims take one layer of needle faces (over 1% of all faces)
     "cad/blade.off": {"p1_angle": 1.0},
     # Hausdorff 0.00292 vs 0.00276 of the diagonal: faces across the creases stage 1 dropped stray
     # up to 0.3 x target from the input
     "organic/rocker-arm.obj": {"hausdorff_rel": 0.0030},
-    # worst angle 6.12 vs 9.65: faces among corners and line points closer than 0.1 x target
-    "organic/stanford-bunny.obj": {"worst_angle": 6.0},
+    # worst angle 6.63 vs 9.65: an input face whose three vertices are corners and whose three edges
+    # are ridges (an island patch) is an output face as it stands, and its smallest angle is 6.63
+    "organic/stanford-bunny.obj": {"worst_angle": 6.6},
     # 85.8% of the edges in range: corners still closer than 0.7 x target, and the front at full size
     # pinched points where thin parts meet, so the main patch is meshed again at 0.9 x size
     "organic/armadillo.off": {"edges_in_range": 0.85},
