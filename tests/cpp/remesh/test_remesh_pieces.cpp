@@ -4,6 +4,7 @@
 #include "remesh/line_sliding.h"
 #include "remesh/patch_retry.h"
 #include "remesh/size_field.h"
+#include "remesh/strip_staggering.h"
 #include "remesh/surface_locator.h"
 #include "remesh/triangle_geometry.h"
 #include "shapes.h"
@@ -276,4 +277,22 @@ TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
   EXPECT_EQ(out.points[a1], Point3(1, 0, 0));  // line A's points were not in the path: they stay
   // Nothing below the threshold: nothing moves.
   EXPECT_EQ(slide_line_points(out, paths, 5.0 * 3.14159265358979323846 / 180.0), 0);
+}
+
+TEST(RemeshPieces, StripLineTakesThePointsAcrossShiftedAlongTheOtherSide) {
+  // A line of 10 elements along x, the other side of the strip 0.01 away with points at 0.28,
+  // 1.28, ... 5.28 (its segments end at x = 6): the points land there, the rest of the line
+  // (4.72 elements) is filled evenly, a point out of reach is ignored.
+  const std::vector<Point3> polyline{Point3(0, 0, 0), Point3(4, 0, 0), Point3(10, 0, 0)};
+  const std::vector<double> cumulative{0.0, 4.0, 10.0};
+  std::vector<Point3> opposite;
+  for (int k = 0; k < 6; ++k) opposite.push_back(Point3(k + 0.28, 0.01, 0));
+  opposite.push_back(Point3(8.5, 1.0, 0));  // far from the line
+  const std::vector<double> at = staggered_positions(polyline, cumulative, opposite, 0.1);
+  ASSERT_EQ(at.size(), 12u);
+  EXPECT_EQ(at.front(), 0.0);
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(at[1 + k], k + 0.28, 1e-12);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(at[7 + k], 5.28 + (k + 1) * 4.72 / 5, 1e-12);
+  EXPECT_EQ(at.back(), 10.0);
+  EXPECT_TRUE(staggered_positions(polyline, cumulative, {Point3(5, 1, 0)}, 0.1).empty());
 }
