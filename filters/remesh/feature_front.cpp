@@ -1,5 +1,7 @@
 #include "remesh/feature_front.h"
 
+#include "remesh/strip_staggering.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -118,6 +120,32 @@ std::vector<char> find_thin_patches(const features::Result& fr, const Surface& s
   return thin;
 }
 
+// Patches on either side of a line: those of the faces on its first input edge.
+std::vector<int> bordered_patches(const Surface& s, const VertexFaces& vf, const std::vector<int>& chain) {
+  std::vector<int> groups;
+  for (int k = vf.begin[chain[0]]; k < vf.begin[chain[0] + 1]; ++k) {
+    const auto& t = s.faces[vf.face[k]];
+    if (std::count(t.begin(), t.end(), chain[1]) > 0) groups.push_back(s.group[vf.face[k]]);
+  }
+  std::sort(groups.begin(), groups.end());
+  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  return groups;
+}
+
+// The line's polyline and its points with their arc lengths along it, for sliding them later.
+LinePath line_path(const Surface& s, const VertexFaces& vf, const std::vector<int>& chain, const std::vector<int>& pts,
+                   std::vector<double> arc, bool may_slide) {
+  LinePath path;
+  for (int v : chain) path.polyline.push_back(s.points[v]);
+  for (size_t j = 0; j + 1 < chain.size(); ++j)
+    path.segment_host.push_back(vf.begin[chain[j]] < vf.begin[chain[j] + 1] ? vf.face[vf.begin[chain[j]]] : -1);
+  path.points = pts;
+  path.arc = std::move(arc);
+  path.slidable.assign(pts.size(), may_slide ? 1 : 0);
+  path.slidable.front() = path.slidable.back() = 0;
+  return path;
+}
+
 }  // namespace
 
 double polyline_gap(const std::vector<Point3>& a, const std::vector<Point3>& b) {
@@ -166,6 +194,9 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
     for (size_t i = 0; i < fr.lines.size(); ++i)
       if ((slivers.twin_of[i] >= 0) == (pass == 1)) order.push_back(int(i));
 
+  std::map<int, std::vector<int>> lines_along_thin;  // thin patch -> its lines discretised so far
+  std::vector<char> has_twin(fr.lines.size(), 0);
+  for (int t : slivers.twin_of) if (t >= 0) has_twin[t] = 1;
   for (int line_id : order) {
     const auto& line = fr.lines[line_id];
     const int twin = slivers.twin_of[line_id];
@@ -182,17 +213,39 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       auto key = std::minmax(chain.front(), chain.back());
       if (end_pairs[{key.first, key.second}] > 1 || chain.front() == chain.back()) min_segments = 2;
     }
-    const int n = twin >= 0 ? int(line_points[twin].size()) - 1 : segment_count(lengths, sizes, min_segments);
     const std::vector<double> w = normalised_lengths(lengths, sizes);
     std::vector<double> cumulative(segs + 1, 0.0);
     for (size_t j = 0; j < segs; ++j) cumulative[j + 1] = cumulative[j] + w[j];
     const double total = cumulative.back();
-    // Input segment and point at normalised arc length t (a fraction of the line).
-    auto locate_on_line = [&](double t, size_t& seg, double& u) {
-      const double target = t * total;
-      seg = std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin();
+    // Where the output points go, as normalised arc lengths: staggered against a line across a
+    // thin strip already discretised, else evenly.
+    std::vector<double> position;
+    const int evenly = twin >= 0 ? int(line_points[twin].size()) - 1 : segment_count(lengths, sizes, min_segments);
+    if (twin < 0 && evenly >= kMinStaggeredSegments) {
+      std::vector<Point3> polyline, opposite;
+      for (int v : chain) polyline.push_back(s.points[v]);
+      for (int g : bordered_patches(s, vf, chain)) {
+        if (!ff.thin_patch[g]) continue;
+        for (int other : lines_along_thin[g])
+          for (size_t k = 0; k + 1 < line_points[other].size(); ++k)
+            opposite.push_back(out.points[line_points[other][k]] * (1 - kStagger) +
+                               out.points[line_points[other][k + 1]] * kStagger);
+        lines_along_thin[g].push_back(line_id);
+      }
+      if (!opposite.empty())
+        position = staggered_positions(polyline, cumulative, opposite, kSliverGap * *std::min_element(sizes.begin(), sizes.end()));
+      if (int(position.size()) - 1 < min_segments) position.clear();
+    }
+    const bool staggered = !position.empty();
+    const int n = staggered ? int(position.size()) - 1 : evenly;
+    if (!staggered)
+      for (int i = 0; i <= n; ++i) position.push_back(double(i) / n * total);
+    auto middle = [&](int i) { return staggered ? 0.5 * (position[i] + position[i + 1]) : (i + 0.5) / n * total; };
+    // Input segment and point at normalised arc length x.
+    auto locate_on_line = [&](double x, size_t& seg, double& u) {
+      seg = std::upper_bound(cumulative.begin(), cumulative.end(), x) - cumulative.begin();
       seg = std::clamp<size_t>(seg, 1, segs) - 1;
-      u = w[seg] > 0 ? std::clamp((target - cumulative[seg]) / w[seg], 0.0, 1.0) : 0.0;
+      u = w[seg] > 0 ? std::clamp((x - cumulative[seg]) / w[seg], 0.0, 1.0) : 0.0;
     };
     // Points: the ends are corners (or the start of a closed line), the rest lie on the polyline.
     std::vector<int> pts(n + 1);
@@ -209,9 +262,13 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       ff.merged_lines++;
     }
     if (twin < 0) pts[0] = end_point(chain.front());
+    std::vector<double> along(segs + 1, 0.0), arc(n + 1, 0.0);  // arc lengths of input and output points
+    for (size_t j = 0; j < segs; ++j) along[j + 1] = along[j] + lengths[j];
+    arc[n] = along[segs];
     for (int i = 1; i < n && twin < 0; ++i) {
       size_t seg; double u;
-      locate_on_line(double(i) / n, seg, u);
+      locate_on_line(position[i], seg, u);
+      arc[i] = along[seg] + u * lengths[seg];
       const Point3 p = s.points[chain[seg]] * (1 - u) + s.points[chain[seg + 1]] * u;
       const int v0 = chain[seg];
       const int host = vf.begin[v0] < vf.begin[v0 + 1] ? vf.face[vf.begin[v0]] : -1;
@@ -219,11 +276,12 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
     }
     if (twin < 0) pts[n] = line.closed ? pts[0] : end_point(chain.back());
     line_points[line_id] = pts;
+    if (twin < 0) ff.line_paths.push_back(line_path(s, vf, chain, pts, arc, has_twin[line_id] == 0));
 
     for (int i = 0; i < n; ++i) {
       if (twin < 0) ff.feature_edges.push_back({pts[i], pts[i + 1]});
       size_t seg; double u;
-      locate_on_line((i + 0.5) / n, seg, u);
+      locate_on_line(middle(i), seg, u);
       const int va = chain[seg], vb = chain[seg + 1];
       // Each face on this input edge puts the output side into its patch's front, oriented
       // the way that face runs the edge (so the patch lies to the side's left).

@@ -5,6 +5,7 @@
 
 #include "features/feature_lines.h"
 #include "remesh/advancing_front.h"
+#include "remesh/line_sliding.h"
 #include "remesh/output_mesh.h"
 #include "remesh/size_field.h"
 
@@ -23,6 +24,8 @@ struct FeatureFront {
   /// a thin strip (the rim of a thin plate) that takes one layer of faces between its lines.
   std::vector<char> thin_patch;
   int merged_lines = 0;  ///< lines that took the points of a nearly coincident twin
+  /// Every line with its input polyline, for sliding its points later (twins once).
+  std::vector<LinePath> line_paths;
 };
 
 /// Largest distance from a vertex of one polyline to the other polyline (both ways).

@@ -2,9 +2,11 @@
 // smoothing of free points projected back onto the input. Angle swaps and smoothing raise
 // the smallest angle of the faces they touch; valence swaps (towards 6 neighbours) keep
 // their faces above 35 degrees or their old smallest angle, so the mesh's minimum angle
-// never drops. Feature edges are never swapped and line and corner points never move.
+// never drops. Feature edges are never swapped, corners never move and line points only slide
+// along their lines (line_sliding.h).
 #pragma once
 
+#include "remesh/line_sliding.h"
 #include "remesh/output_mesh.h"
 #include "remesh/surface_locator.h"
 
@@ -18,9 +20,11 @@ struct ImprovementResult {
   int moves = 0;
 };
 
-/// `feature_edges` are output edges that must stay (either orientation); `pinned` points (e.g.
-/// snapped onto input vertices) never move.
+/// `feature_edges` are output edges that must stay (either orientation); the points of
+/// `line_paths` slide along them (none given: line points stay); `pinned` points (e.g. snapped
+/// onto input vertices) never move.
 ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
-                               const SurfaceLocator& locator, int iterations, const std::vector<int>& pinned = {});
+                               const SurfaceLocator& locator, int iterations,
+                               std::vector<LinePath> line_paths = {}, const std::vector<int>& pinned = {});
 
 }  // namespace mr::remesh

@@ -253,7 +253,7 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   }
 
   progress(params, 80, "Improving: swaps and smoothing");
-  const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations);
+  const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations, ff.line_paths);
   result.swaps = ir.swaps;
   result.smoothed = ir.moves;
 
@@ -263,7 +263,8 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   // Snapping bends the faces around the moved points (armadillo at 1%: 1.4 -> 2.7% of the edges
   // longer than 1.4 x target); the post-pass again, with those points held on their vertices.
   if (!snapped.empty()) {
-    const ImprovementResult again = improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations, snapped);
+    const ImprovementResult again =
+        improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations, ff.line_paths, snapped);
     result.swaps += again.swaps;
     result.smoothed += again.moves;
   }

@@ -59,15 +59,12 @@ def input_ridges(name: str, min_line_length: float):
 # Acceptance items a mesh does not meet yet at 1% / 30 degrees / min_line_length = target, with the
 # measured numbers (benchmarks/remesh.md); each is asserted at the weaker bound given instead.
 SHORTFALLS = {
-    # worst angle 17.44 vs 19.18 degrees: a triangle from a 0.33 x target line segment at a crease tip
-    "cad/fandisk.obj": {"worst_angle": 17.0},
-    # 1st-percentile angle 1.087 vs 1.341: the two thin rims take one layer of needle faces (over 1% of all faces)
-    "cad/blade.off": {"p1_angle": 1.0},
     # Hausdorff 0.00292 vs 0.00276 of the diagonal: faces across the creases stage 1 dropped stray
     # up to 0.3 x target from the input
     "organic/rocker-arm.obj": {"hausdorff_rel": 0.0030},
-    # worst angle 6.12 vs 9.65: faces among corners and line points closer than 0.1 x target
-    "organic/stanford-bunny.obj": {"worst_angle": 6.0},
+    # worst angle 6.63 vs 9.65: an input face whose three vertices are corners and whose three edges
+    # are ridges (an island patch) is an output face as it stands, and its smallest angle is 6.63
+    "organic/stanford-bunny.obj": {"worst_angle": 6.6},
     # 85.8% of the edges in range: corners still closer than 0.7 x target, and the front at full size
     # pinched points where thin parts meet, so the main patch is meshed again at 0.9 x size
     "organic/armadillo.off": {"edges_in_range": 0.85},
@@ -260,8 +257,9 @@ def test_blade_thin_rims_are_meshed_and_keep_topology():
     """Regression: cad/blade.off is a thin plate whose two rims are strips 0.033 wide (2.5% of the
     1% target) between ridge lines; no front layer fits there, they were left unmeshed (410 front
     sides) and the output fell into two components. They now get one layer of faces between their
-    lines: manifold, one component, the input's 2 boundary loops and genus 0 exactly, and the
-    worst angle no lower than MeshLab's isotropic remesher reports there (1.0 degrees)."""
+    lines: manifold, one component, the input's 2 boundary loops and genus 0 exactly. The points of
+    one line of a rim are staggered by 0.28 of a segment against the other's (right across, as
+    before, the faces had 1.09 degrees): measured 1.51 degrees, MeshLab's isotropic remesher 1.0."""
     ms = load("cad/blade.off")
     topo_in = ms.get_topological_measures()
     target = 0.01 * ms.current_mesh().bounding_box().diagonal()
@@ -275,13 +273,14 @@ def test_blade_thin_rims_are_meshed_and_keep_topology():
     assert topo["genus"] == topo_in["genus"] == 0
     _, oriented = edges(ms.current_mesh())
     assert oriented
-    assert min_angles(ms.current_mesh()).min() >= 1.0
+    assert min_angles(ms.current_mesh()).min() >= 1.5
 
 
 def test_thin_plate_rims_get_one_layer_between_their_ridges():
     """A 100 x 50 x 0.1 plate at target 2: the four rims (0.1 wide, a twentieth of the size) are
     thin strips meshed by one layer of faces between their ridges; the plate stays closed, genus 0,
-    and the worst angle is that of one layer at the line spacing, atan(0.1 / 2) = 2.86 degrees."""
+    and the worst angle is that of one layer whose points are staggered by 0.28 of the line spacing,
+    atan(0.1 / (0.72 x 2)) = 3.97 degrees (right across each other they would give 2.86)."""
     ms = pymeshlab.MeshSet()
     ms.create_cube()  # side 2, centred
     cube = ms.current_mesh()
@@ -293,7 +292,7 @@ def test_thin_plate_rims_get_one_layer_between_their_ridges():
     assert topo["boundary_edges"] == 0 and topo["genus"] == 0 and topo["connected_components_number"] == 1
     _, oriented = edges(ms.current_mesh())
     assert oriented
-    assert min_angles(ms.current_mesh()).min() >= np.degrees(np.arctan(0.1 / 2.0)) * 0.95
+    assert min_angles(ms.current_mesh()).min() >= np.degrees(np.arctan(0.1 / (0.72 * 2.0))) * 0.95
 
 
 def cad_cylinder(radius=10.0, height=200.0, segments=500):

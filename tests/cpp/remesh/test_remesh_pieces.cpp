@@ -1,8 +1,10 @@
 // Unit tests of the remesher's pieces.
 #include "remesh/advancing_front.h"
 #include "remesh/feature_front.h"
+#include "remesh/line_sliding.h"
 #include "remesh/patch_retry.h"
 #include "remesh/size_field.h"
+#include "remesh/strip_staggering.h"
 #include "remesh/surface_locator.h"
 #include "remesh/triangle_geometry.h"
 #include "shapes.h"
@@ -236,4 +238,61 @@ TEST(RemeshPieces, PinchedPointHasTwoFansAndRemovingAPatchKeepsTheOthers) {
   ASSERT_EQ(out.faces.size(), 1u);
   EXPECT_EQ(out.face_patch[0], 1);
   EXPECT_EQ(out.shared_edges.size(), 3u);  // patch 1's edges between line points stay taken
+}
+
+TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
+  // Two lines leave a corner 19.3 degrees apart with points at 1 and 2 on both: the face between
+  // the first pair and the next point of line A has 17.4 degrees. The first point of line B
+  // slides along B (here straight) until no face of its ring is below the tip's 19.3 degrees.
+  const double alpha = 19.3 * 3.14159265358979323846 / 180.0;
+  const Point3 dir_b(std::cos(alpha), std::sin(alpha), 0);
+  OutputMesh out;
+  const int c = out.add_point(Point3(0, 0, 0), 0, PointKind::Corner);
+  const int a1 = out.add_point(Point3(1, 0, 0), 0, PointKind::Line);
+  const int a2 = out.add_point(Point3(2, 0, 0), 0, PointKind::Line);
+  const int b1 = out.add_point(dir_b, 0, PointKind::Line);
+  const int b2 = out.add_point(dir_b * 2.0, 0, PointKind::Line);
+  out.faces = {{c, a1, b1}, {b1, a1, a2}, {b2, b1, a2}};
+  out.face_patch = {0, 0, 0};
+  LinePath b;
+  b.polyline = {Point3(0, 0, 0), dir_b * 0.7, dir_b * 3.0};
+  b.segment_host = {5, 6};
+  b.points = {c, b1, b2};
+  b.arc = {0.0, 1.0, 2.0};
+  b.slidable = {0, 1, 0};
+  std::vector<LinePath> paths{b};
+  auto worst = [&] {
+    double w = 1e9;
+    for (const auto& f : out.faces) w = std::min(w, min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
+    return w * 180.0 / 3.14159265358979323846;
+  };
+  EXPECT_NEAR(worst(), 17.4, 0.1);
+  EXPECT_EQ(slide_line_points(out, paths, 30.0 * 3.14159265358979323846 / 180.0), 1);
+  EXPECT_GE(worst(), 19.3 - 1e-6);
+  EXPECT_NEAR((out.points[b1] ^ dir_b).Norm(), 0.0, 1e-12);  // still on line B
+  EXPECT_NEAR(out.points[b1].Norm(), paths[0].arc[1], 1e-12);
+  EXPECT_GT(paths[0].arc[1], 1.0);
+  EXPECT_LT(paths[0].arc[1], 2.0);
+  EXPECT_EQ(out.host[b1], 6);
+  EXPECT_EQ(out.points[a1], Point3(1, 0, 0));  // line A's points were not in the path: they stay
+  // Nothing below the threshold: nothing moves.
+  EXPECT_EQ(slide_line_points(out, paths, 5.0 * 3.14159265358979323846 / 180.0), 0);
+}
+
+TEST(RemeshPieces, StripLineTakesThePointsAcrossShiftedAlongTheOtherSide) {
+  // A line of 10 elements along x, the other side of the strip 0.01 away with points at 0.28,
+  // 1.28, ... 5.28 (its segments end at x = 6): the points land there, the rest of the line
+  // (4.72 elements) is filled evenly, a point out of reach is ignored.
+  const std::vector<Point3> polyline{Point3(0, 0, 0), Point3(4, 0, 0), Point3(10, 0, 0)};
+  const std::vector<double> cumulative{0.0, 4.0, 10.0};
+  std::vector<Point3> opposite;
+  for (int k = 0; k < 6; ++k) opposite.push_back(Point3(k + 0.28, 0.01, 0));
+  opposite.push_back(Point3(8.5, 1.0, 0));  // far from the line
+  const std::vector<double> at = staggered_positions(polyline, cumulative, opposite, 0.1);
+  ASSERT_EQ(at.size(), 12u);
+  EXPECT_EQ(at.front(), 0.0);
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(at[1 + k], k + 0.28, 1e-12);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(at[7 + k], 5.28 + (k + 1) * 4.72 / 5, 1e-12);
+  EXPECT_EQ(at.back(), 10.0);
+  EXPECT_TRUE(staggered_positions(polyline, cumulative, {Point3(5, 1, 0)}, 0.1).empty());
 }

@@ -139,3 +139,22 @@ TEST(RemeshWhole, PeakSharperThanTheElementsGetsAnOutputVertexAtItsTip) {
   EXPECT_LE(closest, 1e-12);
   EXPECT_GE(r.min_angle_deg, 10.0);
 }
+
+TEST(RemeshWhole, ThinPlateRimsGetStaggeredPointsAcrossTheirStrips) {
+  // A 100 x 50 x 0.1 plate at size 2: each rim is one layer of faces between two ridges. Points
+  // across a rim right opposite each other would give right triangles of atan(0.1 / 2) = 2.9
+  // degrees; staggered by 0.28 of a segment the worst is atan(0.1 / (0.72 x 2)) = 4.0 degrees.
+  TriMesh m;
+  test::cube(m, 1);
+  for (auto& v : m.vert) v.P() = Point3(v.P()[0] * 50.0, v.P()[1] * 25.0, v.P()[2] * 0.05);
+  RemeshRun run_;
+  run(m, 2.0, run_);
+  const Topology t = topology(run_.mesh);
+  EXPECT_EQ(run_.r.unmeshed_sides, 0);
+  EXPECT_EQ(run_.r.thin_patches, 4);
+  EXPECT_EQ(t.boundary_edges, 0);
+  EXPECT_EQ(t.non_manifold_edges, 0);
+  EXPECT_EQ(t.misoriented_edges, 0);
+  EXPECT_EQ(t.euler, 2);
+  EXPECT_GE(run_.r.min_angle_deg, 3.9);
+}

@@ -1,0 +1,95 @@
+#include "remesh/line_sliding.h"
+
+#include "remesh/triangle_geometry.h"
+
+#include <algorithm>
+
+namespace mr::remesh {
+
+namespace {
+
+// Tried places between the two neighbours, as fractions of the arc between them: not closer to
+// a neighbour than a sixth of it, so no line segment becomes much shorter than its neighbour.
+constexpr double kFractions[] = {1.0 / 6, 2.0 / 6, 3.0 / 6, 4.0 / 6, 5.0 / 6};
+// A face around the moved point may turn by at most 60 degrees (it must not fold over).
+constexpr double kMinNormalAgreement = 0.5;
+
+struct Placement {
+  Point3 point;
+  int segment = 0;
+};
+
+Placement at_arc(const LinePath& path, const std::vector<double>& cumulative, double s) {
+  const size_t segs = path.polyline.size() - 1;
+  size_t seg = std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin();
+  seg = std::clamp<size_t>(seg, 1, segs) - 1;
+  const double len = cumulative[seg + 1] - cumulative[seg];
+  const double u = len > 0 ? std::clamp((s - cumulative[seg]) / len, 0.0, 1.0) : 0.0;
+  return {path.polyline[seg] * (1 - u) + path.polyline[seg + 1] * u, int(seg)};
+}
+
+}  // namespace
+
+int slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double worse_than_rad) {
+  const size_t nv = out.points.size();
+  std::vector<int> begin(nv + 1, 0), ring;
+  for (const auto& f : out.faces) for (int v : f) begin[v + 1]++;
+  for (size_t i = 1; i <= nv; ++i) begin[i] += begin[i - 1];
+  ring.resize(begin[nv]);
+  std::vector<int> fill(begin.begin(), begin.end() - 1);
+  for (size_t f = 0; f < out.faces.size(); ++f) for (int v : out.faces[f]) ring[fill[v]++] = int(f);
+
+  auto ring_min_angle = [&](int v) {
+    double worst = 1e9;
+    for (int k = begin[v]; k < begin[v + 1]; ++k) {
+      const auto& f = out.faces[ring[k]];
+      worst = std::min(worst, min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
+    }
+    return worst;
+  };
+  int moves = 0;
+  std::vector<Point3> old_normal;
+  for (LinePath& path : paths) {
+    if (path.polyline.size() < 2) continue;
+    std::vector<double> cumulative(path.polyline.size(), 0.0);
+    for (size_t j = 1; j < path.polyline.size(); ++j)
+      cumulative[j] = cumulative[j - 1] + (path.polyline[j] - path.polyline[j - 1]).Norm();
+    for (size_t i = 1; i + 1 < path.points.size(); ++i) {
+      const int v = path.points[i];
+      if (!path.slidable[i] || begin[v] == begin[v + 1]) continue;
+      const double before = ring_min_angle(v);
+      if (before >= worse_than_rad) continue;
+      old_normal.clear();
+      for (int k = begin[v]; k < begin[v + 1]; ++k) {
+        const auto& f = out.faces[ring[k]];
+        old_normal.push_back(unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
+      }
+      const Point3 old = out.points[v];
+      const double lo = path.arc[i - 1], hi = path.arc[i + 1];
+      double best = before + 1e-9, best_arc = -1;
+      Placement best_place;
+      for (double t : kFractions) {
+        const double s = lo + t * (hi - lo);
+        const Placement place = at_arc(path, cumulative, s);
+        out.points[v] = place.point;
+        bool folded = false;
+        for (int k = begin[v]; k < begin[v + 1] && !folded; ++k) {
+          const auto& f = out.faces[ring[k]];
+          folded = unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]) * old_normal[k - begin[v]] <
+                   kMinNormalAgreement;
+        }
+        const double after = folded ? 0.0 : ring_min_angle(v);
+        if (after > best) { best = after; best_arc = s; best_place = place; }
+      }
+      out.points[v] = old;
+      if (best_arc < 0) continue;
+      out.points[v] = best_place.point;
+      out.host[v] = path.segment_host[best_place.segment];
+      path.arc[i] = best_arc;
+      ++moves;
+    }
+  }
+  return moves;
+}
+
+}  // namespace mr::remesh

@@ -1,0 +1,31 @@
+// Constrained smoothing of feature-line points: a line point slides along its input polyline,
+// between its two neighbours on the line, to where the smallest angle of its faces is largest.
+// Lines are discretised before the patches and know nothing of them; where two lines converge
+// (a crease tip) or run side by side (a thin rim, a noisy scan's twin ridges) the points of the
+// two lines face each other and the faces between them are needles. Sliding staggers them.
+// The point stays on the input ridge exactly and the move is kept only if it raises the
+// smallest angle around the point, so the mesh's minimum angle never drops.
+#pragma once
+
+#include "remesh/output_mesh.h"
+
+#include <vector>
+
+namespace mr::remesh {
+
+/// One discretised feature line: the input polyline it follows and its output points in order.
+struct LinePath {
+  std::vector<Point3> polyline;   ///< input vertices along the line (a closed line repeats its first)
+  std::vector<int> segment_host;  ///< an input face on each polyline segment (host of points there)
+  std::vector<int> points;        ///< output points, first to last (a closed line repeats its first)
+  std::vector<double> arc;        ///< arc length of each output point along the polyline
+  /// Points that may slide: false for the ends and for points another line shares.
+  std::vector<char> slidable;
+};
+
+/// Moves line points along their lines where that raises the smallest angle of their faces
+/// below `worse_than_rad` (the rest are left alone: the lines keep their even spacing);
+/// `paths` follow the moves. Returns how many points moved.
+int slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double worse_than_rad);
+
+}  // namespace mr::remesh
