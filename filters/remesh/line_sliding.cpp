@@ -1,5 +1,6 @@
 #include "remesh/line_sliding.h"
 
+#include "remesh/face_rings.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
@@ -32,12 +33,8 @@ Placement at_arc(const LinePath& path, const std::vector<double>& cumulative, do
 
 int slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double worse_than_rad) {
   const size_t nv = out.points.size();
-  std::vector<int> begin(nv + 1, 0), ring;
-  for (const auto& f : out.faces) for (int v : f) begin[v + 1]++;
-  for (size_t i = 1; i <= nv; ++i) begin[i] += begin[i - 1];
-  ring.resize(begin[nv]);
-  std::vector<int> fill(begin.begin(), begin.end() - 1);
-  for (size_t f = 0; f < out.faces.size(); ++f) for (int v : out.faces[f]) ring[fill[v]++] = int(f);
+  const FaceRings rings(nv, out.faces);
+  const std::vector<int>&begin = rings.begin, &ring = rings.item;
 
   auto ring_min_angle = [&](int v) {
     double worst = 1e9;

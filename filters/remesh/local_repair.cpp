@@ -59,10 +59,7 @@ std::vector<FrontSide> open_hole_around(OutputMesh& out, int patch, const std::v
 
   out.faces = std::move(kept);
   out.face_patch = std::move(kept_patch);
-  out.shared_edges.clear();
-  for (const auto& t : out.faces)
-    for (int z = 0; z < 3; ++z)
-      if (out.is_shared(t[z], t[(z + 1) % 3])) out.shared_edges.insert(OutputMesh::edge_key(t[z], t[(z + 1) % 3]));
+  out.rebuild_shared_edges();
   return front;
 }
 

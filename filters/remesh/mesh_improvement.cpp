@@ -1,5 +1,6 @@
 #include "remesh/mesh_improvement.h"
 
+#include "remesh/face_rings.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
@@ -122,12 +123,8 @@ int valence_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed
 
 int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vector<char>& pinned) {
   const size_t nv = out.points.size();
-  std::vector<int> begin(nv + 1, 0), ring;
-  for (const auto& f : out.faces) for (int v : f) begin[v + 1]++;
-  for (size_t i = 1; i <= nv; ++i) begin[i] += begin[i - 1];
-  ring.resize(begin[nv]);
-  std::vector<int> fill(begin.begin(), begin.end() - 1);
-  for (size_t f = 0; f < out.faces.size(); ++f) for (int v : out.faces[f]) ring[fill[v]++] = int(f);
+  const FaceRings rings(nv, out.faces);
+  const std::vector<int>&begin = rings.begin, &ring = rings.item;
   const Surface& s = locator.surface();
   int moves = 0;
   for (size_t v = 0; v < nv; ++v) {

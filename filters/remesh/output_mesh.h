@@ -46,6 +46,13 @@ struct OutputMesh {
   }
   /// Is a->b an edge between two points that other patches may also use?
   bool is_shared(int a, int b) const { return kind[a] != PointKind::Free && kind[b] != PointKind::Free; }
+  /// shared_edges again from the faces (after faces were taken out).
+  void rebuild_shared_edges() {
+    shared_edges.clear();
+    for (const auto& t : faces)
+      for (int z = 0; z < 3; ++z)
+        if (is_shared(t[z], t[(z + 1) % 3])) shared_edges.insert(edge_key(t[z], t[(z + 1) % 3]));
+  }
 };
 
 }  // namespace mr::remesh

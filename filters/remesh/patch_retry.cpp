@@ -39,10 +39,7 @@ void remove_patch_faces(OutputMesh& out, int patch) {
     if (out.face_patch[f] != patch) { faces.push_back(out.faces[f]); face_patch.push_back(out.face_patch[f]); }
   out.faces = std::move(faces);
   out.face_patch = std::move(face_patch);
-  out.shared_edges.clear();
-  for (const auto& t : out.faces)
-    for (int z = 0; z < 3; ++z)
-      if (out.is_shared(t[z], t[(z + 1) % 3])) out.shared_edges.insert(OutputMesh::edge_key(t[z], t[(z + 1) % 3]));
+  out.rebuild_shared_edges();
 }
 
 }  // namespace mr::remesh

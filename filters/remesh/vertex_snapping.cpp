@@ -1,6 +1,7 @@
 #include "remesh/vertex_snapping.h"
 
 #include "common/uniform_grid.h"
+#include "remesh/face_rings.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
@@ -12,18 +13,6 @@ namespace mr::remesh {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
-// Faces around each point (CSR).
-struct Rings {
-  std::vector<int> begin, item;
-  Rings(size_t points, const std::vector<std::array<int, 3>>& faces) : begin(points + 1, 0) {
-    for (const auto& f : faces) for (int v : f) begin[v + 1]++;
-    for (size_t i = 1; i <= points; ++i) begin[i] += begin[i - 1];
-    item.resize(begin[points]);
-    std::vector<int> fill(begin.begin(), begin.end() - 1);
-    for (size_t f = 0; f < faces.size(); ++f) for (int v : faces[f]) item[fill[v]++] = int(f);
-  }
-};
 
 double face_distance(const OutputMesh& out, int f, const Point3& p) {
   const auto& t = out.faces[f];
@@ -37,8 +26,8 @@ std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& loc
                          const SnapParams& params) {
   if (out.faces.empty()) return {};
   const Surface& input = locator.surface();
-  const Rings out_rings(out.points.size(), out.faces);
-  const Rings in_rings(input.points.size(), input.faces);
+  const FaceRings out_rings(out.points.size(), out.faces);
+  const FaceRings in_rings(input.points.size(), input.faces);
   UniformGrid grid(std::max(size.max_size(), 1e-300));
   for (size_t v = 0; v < out.points.size(); ++v)
     if (out_rings.begin[v] < out_rings.begin[v + 1]) grid.insert(int(v), out.points[v]);

@@ -2,9 +2,7 @@
 // front meshes it again so the patch is whole.
 #include "remesh/advancing_front.h"
 #include "remesh/local_repair.h"
-#include "remesh/size_field.h"
-#include "remesh/surface_locator.h"
-#include "shapes.h"
+#include "unit_square.h"
 
 #include <gtest/gtest.h>
 
@@ -17,18 +15,10 @@ using namespace mr::remesh;
 
 namespace {
 
-// The unit square meshed by the front from its boundary (10 line points per side).
-std::vector<FrontSide> mesh_square(OutputMesh& out, const SurfaceLocator& loc, const SizeField& size) {
-  std::vector<int> ring;
-  for (int k = 0; k < 40; ++k) {
-    const int side = k / 10;
-    const double t = (k % 10) / 10.0;
-    const Point3 p = side == 0 ? Point3(t, 0, 0) : side == 1 ? Point3(1, t, 0) : side == 2 ? Point3(1 - t, 1, 0) : Point3(0, 1 - t, 0);
-    ring.push_back(out.add_point(p, -1, PointKind::Line));
-  }
-  std::vector<FrontSide> front;
-  for (int k = 0; k < 40; ++k) front.push_back({ring[k], ring[(k + 1) % 40]});
-  advance_front(out, front, 0, loc, size);
+// The unit square meshed by the front from its boundary; returns that front.
+std::vector<FrontSide> mesh_square(OutputMesh& out, const test::UnitSquare& sq) {
+  const std::vector<FrontSide> front = test::UnitSquare::boundary(out);
+  advance_front(out, front, 0, sq.locator, sq.size);
   return front;
 }
 
@@ -48,13 +38,9 @@ int nearest_point(const OutputMesh& out, const Point3& p) {
 }  // namespace
 
 TEST(RemeshLocalRepair, HoleAroundASpotHasAClosedFrontAndIsMeshedAgain) {
-  TriMesh m;
-  test::grid(m, 4);
-  const Surface s = Surface::from_mesh(m, {});
-  const SurfaceLocator loc(s, 0.1);
-  const SizeField size(s, std::vector<double>(s.points.size(), 0.1));
+  const test::UnitSquare sq(0.1);
   OutputMesh out;
-  const std::vector<FrontSide> initial = mesh_square(out, loc, size);
+  const std::vector<FrontSide> initial = mesh_square(out, sq);
   const size_t faces_before = out.faces.size();
   ASSERT_NEAR(area(out), 1.0, 1e-9);
 
@@ -78,20 +64,16 @@ TEST(RemeshLocalRepair, HoleAroundASpotHasAClosedFrontAndIsMeshedAgain) {
   }
   for (const auto& [v, b] : balance) EXPECT_EQ(b, 0);
 
-  const FrontResult r = advance_front(out, hole, 0, loc, size.scaled(0.8));
+  const FrontResult r = advance_front(out, hole, 0, sq.locator, sq.size.scaled(0.8));
   EXPECT_EQ(r.unmeshed_sides, 0);
   EXPECT_NEAR(area(out), 1.0, 1e-9);
   EXPECT_EQ(bad_edges(out), 0);
 }
 
 TEST(RemeshLocalRepair, NoSpotRemovesNothingAndOversizedFacesAreFound) {
-  TriMesh m;
-  test::grid(m, 4);
-  const Surface s = Surface::from_mesh(m, {});
-  const SurfaceLocator loc(s, 0.1);
-  const SizeField size(s, std::vector<double>(s.points.size(), 0.1));
+  const test::UnitSquare sq(0.1);
   OutputMesh out;
-  const std::vector<FrontSide> initial = mesh_square(out, loc, size);
+  const std::vector<FrontSide> initial = mesh_square(out, sq);
   const size_t faces = out.faces.size();
   EXPECT_TRUE(open_hole_around(out, 0, initial, {}, {}, 0.2).empty());
   EXPECT_EQ(out.faces.size(), faces);

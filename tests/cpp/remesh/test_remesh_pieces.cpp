@@ -8,6 +8,7 @@
 #include "remesh/surface_locator.h"
 #include "remesh/triangle_geometry.h"
 #include "shapes.h"
+#include "unit_square.h"
 
 #include <gtest/gtest.h>
 
@@ -130,24 +131,10 @@ TEST(RemeshPieces, FrontPriorityTakesSmallestFirstAndPenalisesFailures) {
 }
 
 TEST(RemeshPieces, AdvancingFrontFillsASquare) {
-  TriMesh m;
-  test::grid(m, 4);
-  const Surface s = Surface::from_mesh(m, {});
-  const SurfaceLocator loc(s, 0.1);
-  std::vector<double> sizes(s.points.size(), 0.1);
-  const SizeField size(s, sizes);
+  const test::UnitSquare sq(0.1);
   OutputMesh out;
-  std::vector<FrontSide> front;
-  // The boundary of the unit square, counter-clockwise, 10 sides per edge.
-  std::vector<int> ring;
-  for (int k = 0; k < 40; ++k) {
-    const int side = k / 10, i = k % 10;
-    const double t = i / 10.0;
-    const Point3 p = side == 0 ? Point3(t, 0, 0) : side == 1 ? Point3(1, t, 0) : side == 2 ? Point3(1 - t, 1, 0) : Point3(0, 1 - t, 0);
-    ring.push_back(out.add_point(p, -1, PointKind::Line));
-  }
-  for (int k = 0; k < 40; ++k) front.push_back({ring[k], ring[(k + 1) % 40]});
-  const FrontResult r = advance_front(out, front, 0, loc, size);
+  const std::vector<FrontSide> front = test::UnitSquare::boundary(out);
+  const FrontResult r = advance_front(out, front, 0, sq.locator, sq.size);
   EXPECT_EQ(r.unmeshed_sides, 0);
   double area = 0;
   for (const auto& f : out.faces) {
@@ -161,22 +148,10 @@ TEST(RemeshPieces, AdvancingFrontFillsASquare) {
 TEST(RemeshPieces, FrontThatCannotCloseTerminatesAndReports) {
   // The square's boundary run clockwise puts the "unmeshed" side outside the patch: the front
   // can place nothing valid there and must stop with its sides reported, not loop.
-  TriMesh m;
-  test::grid(m, 4);
-  const Surface s = Surface::from_mesh(m, {});
-  const SurfaceLocator loc(s, 0.1);
-  const SizeField size(s, std::vector<double>(s.points.size(), 0.1));
+  const test::UnitSquare sq(0.1);
   OutputMesh out;
-  std::vector<int> ring;
-  for (int k = 0; k < 40; ++k) {
-    const int side = k / 10;
-    const double t = (k % 10) / 10.0;
-    const Point3 p = side == 0 ? Point3(t, 0, 0) : side == 1 ? Point3(1, t, 0) : side == 2 ? Point3(1 - t, 1, 0) : Point3(0, 1 - t, 0);
-    ring.push_back(out.add_point(p, -1, PointKind::Line));
-  }
-  std::vector<FrontSide> front;
-  for (int k = 0; k < 40; ++k) front.push_back({ring[(k + 1) % 40], ring[k]});
-  const FrontResult r = advance_front(out, front, 0, loc, size);
+  const std::vector<FrontSide> front = test::UnitSquare::boundary(out, false);
+  const FrontResult r = advance_front(out, front, 0, sq.locator, sq.size);
   EXPECT_GT(r.unmeshed_sides, 0);
   EXPECT_FALSE(r.iteration_limit);
   // Whatever was generated lies on the patch.
