@@ -37,14 +37,17 @@ struct SwapCandidate {
 
 // Swaps edges of nearly flat face pairs of one patch, never a fixed (feature) edge, whenever
 // `wanted` says so; each swap keeps the two new faces agreeing with the surface normal.
+// `region`: which points the pass may touch (a face is considered when one of its points is in it).
 template <class Wanted>
-int swap_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, Wanted&& wanted) {
+int swap_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const std::vector<char>& region,
+               Wanted&& wanted) {
   std::unordered_map<std::uint64_t, int> side_face;  // directed side -> face
   side_face.reserve(out.faces.size() * 3);
   for (size_t f = 0; f < out.faces.size(); ++f)
     for (int z = 0; z < 3; ++z) side_face[directed(out.faces[f][z], out.faces[f][(z + 1) % 3])] = int(f);
   int swaps = 0;
   for (size_t fi = 0; fi < out.faces.size(); ++fi) {
+    if (!region[out.faces[fi][0]] && !region[out.faces[fi][1]] && !region[out.faces[fi][2]]) continue;
     for (int z = 0; z < 3; ++z) {
       const auto F = out.faces[fi];
       const int x = F[z], y = F[(z + 1) % 3], c = F[(z + 2) % 3];
@@ -86,8 +89,8 @@ int swap_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, 
   return swaps;
 }
 
-int swap_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed) {
-  return swap_edges(out, fixed, [](const SwapCandidate& s) { return s.min_angle_after > s.min_angle_before + 1e-6; });
+int swap_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const std::vector<char>& region) {
+  return swap_edges(out, fixed, region, [](const SwapCandidate& s) { return s.min_angle_after > s.min_angle_before + 1e-6; });
 }
 
 // Valence: a free or line point wants 6 neighbours inside the surface and 4 on an open border
@@ -95,7 +98,8 @@ int swap_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed) {
 // closer to it is taken when its faces stay above min(their old minimum angle, `floor`): with a
 // floor no lower than the mesh's worst angle the minimum angle never drops, and the smoothing
 // that follows evens the angles out around the new valences (Netgen's and MMG's order too).
-int valence_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, double floor) {
+int valence_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const std::vector<char>& region,
+                 double floor) {
   std::vector<int> valence(out.points.size(), 0), ideal(out.points.size(), 6);
   std::unordered_map<std::uint64_t, int> edge_faces;
   edge_faces.reserve(out.faces.size() * 2);
@@ -112,7 +116,7 @@ int valence_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed
     const int e = valence[v] + change - ideal[v];
     return e * e;
   };
-  return swap_edges(out, fixed, [&](const SwapCandidate& s) {
+  return swap_edges(out, fixed, region, [&](const SwapCandidate& s) {
     const int before = deviation(s.x, 0) + deviation(s.y, 0) + deviation(s.c, 0) + deviation(s.d, 0);
     const int after = deviation(s.x, -1) + deviation(s.y, -1) + deviation(s.c, 1) + deviation(s.d, 1);
     if (after >= before || s.min_angle_after < std::min(s.min_angle_before, floor)) return false;
@@ -121,14 +125,15 @@ int valence_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed
   });
 }
 
-int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vector<char>& pinned) {
+// Moves free points of `movable`.
+int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vector<char>& movable) {
   const size_t nv = out.points.size();
   const FaceRings rings(nv, out.faces);
   const std::vector<int>&begin = rings.begin, &ring = rings.item;
   const Surface& s = locator.surface();
   int moves = 0;
   for (size_t v = 0; v < nv; ++v) {
-    if (out.kind[v] != PointKind::Free || pinned[v] || begin[v] == begin[v + 1]) continue;
+    if (out.kind[v] != PointKind::Free || !movable[v] || begin[v] == begin[v + 1]) continue;
     const int patch = out.face_patch[ring[begin[v]]];
     Point3 centre(0, 0, 0);
     int count = 0;
@@ -158,13 +163,27 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vecto
   return moves;
 }
 
+// Within two edges of `moved` (all points when it is empty), and `moved` themselves held.
+std::vector<char> region_around(const OutputMesh& out, const std::vector<int>& moved) {
+  std::vector<char> region(out.points.size(), moved.empty() ? 1 : 0);
+  for (int v : moved) region[v] = 1;
+  for (int ring = 0; ring < 2 && !moved.empty(); ++ring) {
+    std::vector<char> grown(region);
+    for (const auto& f : out.faces)
+      if (region[f[0]] || region[f[1]] || region[f[2]]) grown[f[0]] = grown[f[1]] = grown[f[2]] = 1;
+    region = std::move(grown);
+  }
+  return region;
+}
+
 }  // namespace
 
 ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
                                const SurfaceLocator& locator, int iterations, std::vector<LinePath> line_paths,
-                               const std::vector<int>& pinned) {
-  std::vector<char> is_pinned(out.points.size(), 0);
-  for (int v : pinned) is_pinned[v] = 1;
+                               const std::vector<int>& moved) {
+  const std::vector<char> region = region_around(out, moved);
+  std::vector<char> movable(region);
+  for (int v : moved) movable[v] = 0;
   std::unordered_set<std::uint64_t> fixed;
   for (const auto& e : feature_edges) fixed.insert(undirected(e[0], e[1]));
   ImprovementResult r;
@@ -172,8 +191,8 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
   for (const auto& f : out.faces) worst = std::min(worst, face_min_angle(out, f));
   const double floor = std::max(worst, kValenceFloor);
   for (int it = 0; it < iterations; ++it) {
-    const int swaps = swap_pass(out, fixed) + valence_pass(out, fixed, floor);
-    const int moves = smooth_pass(out, locator, is_pinned);
+    const int swaps = swap_pass(out, fixed, region) + valence_pass(out, fixed, region, floor);
+    const int moves = smooth_pass(out, locator, movable);
     r.swaps += swaps;
     r.moves += moves;
     if (swaps == 0 && moves == 0) break;
@@ -183,7 +202,7 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
   for (int it = 0; it < iterations; ++it) {
     const int slides = slide_line_points(out, line_paths, kSlideBelow);
     if (slides == 0) break;
-    r.moves += slides + smooth_pass(out, locator, is_pinned);
+    r.moves += slides + smooth_pass(out, locator, movable);
   }
   return r;
 }

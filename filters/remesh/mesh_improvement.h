@@ -21,10 +21,11 @@ struct ImprovementResult {
 };
 
 /// `feature_edges` are output edges that must stay (either orientation); the points of
-/// `line_paths` slide along them (none given: line points stay); `pinned` points (e.g. snapped
-/// onto input vertices) never move.
+/// `line_paths` slide along them (none given: line points stay). `moved`: points just moved
+/// (snapped onto input vertices) that must stay there; the pass then works only within two edges
+/// of them, the rest having had its pass already (empty: the whole mesh).
 ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
                                const SurfaceLocator& locator, int iterations,
-                               std::vector<LinePath> line_paths = {}, const std::vector<int>& pinned = {});
+                               std::vector<LinePath> line_paths = {}, const std::vector<int>& moved = {});
 
 }  // namespace mr::remesh

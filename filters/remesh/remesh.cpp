@@ -261,10 +261,10 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   const std::vector<int> snapped = snap_to_far_vertices(out, locator, size);
   result.snapped = int(snapped.size());
   // Snapping bends the faces around the moved points (armadillo at 1%: 1.4 -> 2.7% of the edges
-  // longer than 1.4 x target); the post-pass again, with those points held on their vertices.
+  // longer than 1.4 x target); the post-pass again around them, with them held on their vertices.
   if (!snapped.empty()) {
     const ImprovementResult again =
-        improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations, ff.line_paths, snapped);
+        improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations, {}, snapped);
     result.swaps += again.swaps;
     result.smoothed += again.moves;
   }
