@@ -137,6 +137,18 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
     // side in the plane can meet A.
     if (shared == 0 && (pos == 0 || neg == 0) && (zero == 1 || zero == 2))
       return segment_meets_triangle(B[on[0]], B[on[zero - 1]], A[0], A[1], A[2]);
+    // The same with a shared corner s: B's side (s, x) in A's plane meets A beyond s
+    // exactly when it leaves s into A's corner sector (seen across A's largest normal
+    // component, where A is not degenerate).
+    if (shared == 1 && (pos == 0 || neg == 0) && zero == 2) {
+      const int ca = k == 0 ? sf : sg, cb = k == 0 ? sg : sf;
+      const V3& x = B[on[0]] == B[cb] ? B[on[1]] : B[on[0]];
+      const int ka = largest_normal_axis(A), i = (ka + 1) % 3, j = (ka + 2) % 3;
+      auto o = [&](const V3& p, const V3& q, const V3& r) { return orient2d(p.data(), q.data(), r.data(), i, j); };
+      const int sa = o(A[0], A[1], A[2]);
+      const V3 &s = A[ca], &a1 = A[(ca + 1) % 3], &a2 = A[(ca + 2) % 3];
+      return sa * o(s, a1, x) >= 0 && sa * o(s, x, a2) >= 0;
+    }
     if (zero == 3) break;  // coplanar
     // All but the shared corner strictly on one side (the shared corner has o == 0).
     if ((pos + shared == 3 || neg + shared == 3) && (shared == 0 || zero == 1)) return false;

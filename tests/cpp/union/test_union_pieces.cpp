@@ -130,6 +130,12 @@ TEST(UnionClearance, TrianglesMeetOnlyBeyondWhatTheyShare) {
   EXPECT_TRUE(triangles_meet(f, F, {7, 8, 9}, C));  // lies on F's side: they meet there
   const V3 D[3] = {{1.2, 0, 0}, {1.8, 0, 0}, {1.5, 0, -1}};
   EXPECT_FALSE(triangles_meet(f, F, {7, 8, 9}, D));  // on the line beyond F's corner
+  // Across a crease with a shared corner: a side along F's side meets it, one leaving the
+  // corner away from F does not.
+  const V3 K[3] = {{0, 0, 0}, {0.5, 0, 0}, {0.2, 0, -1}};
+  EXPECT_TRUE(triangles_meet(f, F, {0, 14, 15}, K));
+  const V3 L[3] = {{0, 0, 0}, {-0.5, 0, 0}, {-0.2, 0, -1}};
+  EXPECT_FALSE(triangles_meet(f, F, {0, 14, 15}, L));
   // A thin plate: a parallel triangle 1e-15 above does not meet, one through F does.
   const V3 up[3] = {{0, 0, 1e-15}, {1, 0, 1e-15}, {0, 1, 1e-15}};
   EXPECT_FALSE(triangles_meet(f, F, {10, 11, 12}, up));
