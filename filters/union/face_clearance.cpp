@@ -105,6 +105,23 @@ bool separated_in_projection(const V3 F[3], const V3 G[3], int sf, int sg, int k
   return false;
 }
 
+/// Sides of the points B[0..2] of A's plane, exactly: orient3d(A[0], A[1], A[2], B[i]).
+/// The normal is computed once for the three; the same filter bound as orient3d (this
+/// is its expansion along d - a), the exact predicate only where the filter cannot tell.
+void plane_sides(const V3 A[3], const V3 B[3], int out[3]) {
+  const double bx = A[1][0] - A[0][0], by = A[1][1] - A[0][1], bz = A[1][2] - A[0][2];
+  const double cx = A[2][0] - A[0][0], cy = A[2][1] - A[0][1], cz = A[2][2] - A[0][2];
+  const double n0 = by * cz - bz * cy, n1 = bz * cx - bx * cz, n2 = bx * cy - by * cx;
+  const double m0 = std::fabs(by * cz) + std::fabs(bz * cy), m1 = std::fabs(bz * cx) + std::fabs(bx * cz),
+               m2 = std::fabs(bx * cy) + std::fabs(by * cx);
+  for (int i = 0; i < 3; ++i) {
+    const double dx = B[i][0] - A[0][0], dy = B[i][1] - A[0][1], dz = B[i][2] - A[0][2];
+    const double det = dx * n0 + dy * n1 + dz * n2;
+    const double bound = 1e-14 * (std::fabs(dx) * m0 + std::fabs(dy) * m1 + std::fabs(dz) * m2);
+    out[i] = det > bound ? 1 : det < -bound ? -1 : orient3d(A[0].data(), A[1].data(), A[2].data(), B[i].data());
+  }
+}
+
 int largest_normal_axis(const V3 T[3]) {
   const V3 n = cross(sub3(T[1], T[0]), sub3(T[2], T[0]));
   int k = 0;
@@ -126,9 +143,10 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
   for (int k = 0; k < 2; ++k) {
     const V3* A = k == 0 ? F : G;
     const V3* B = k == 0 ? G : F;
-    int pos = 0, neg = 0, zero = 0, on[3];
+    int pos = 0, neg = 0, zero = 0, on[3], sides[3];
+    plane_sides(A, B, sides);
     for (int i = 0; i < 3; ++i) {
-      const int o = orient3d(A[0].data(), A[1].data(), A[2].data(), B[i].data());
+      const int o = sides[i];
       pos += o > 0;
       neg += o < 0;
       if (o == 0) on[zero++] = i;
