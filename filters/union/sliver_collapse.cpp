@@ -40,7 +40,7 @@ class Collapser {
 public:
   Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change)
       : r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()), grid_(r.vertices, r.faces),
-        new_mark_(r.faces.size(), 0) {
+        new_mark_(r.faces.size(), 0), angle_(r.faces.size(), -1) {
     double volume = 0;
     for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
     volume_budget_ = max_volume_change * std::fabs(volume);
@@ -66,7 +66,17 @@ public:
 private:
   static std::pair<int, int> ekey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
   V3 P(int v) const { return r_.vertices[v]; }
-  double min_angle(int f) const { return face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2])); }
+  /// Smallest angle of face f, kept until the face changes (every candidate move
+  /// compares the angles of the same star).
+  double min_angle(int f) const {
+    if (angle_[f] < 0) angle_[f] = face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2]));
+    return angle_[f];
+  }
+  /// Face f has new corners or a moved corner: filed again, its angle recomputed.
+  void refile(int f) {
+    grid_.add(f);
+    angle_[f] = -1;
+  }
   /// Face f with its corner x at `moved` (into q); false if it would degenerate or turn over.
   bool moved_face(int f, int x, const V3& moved, V3 q[3]) const {
     const auto& t = r_.faces[f];
@@ -128,6 +138,7 @@ private:
   std::vector<std::array<int, 3>> new_ids_;
   std::vector<std::array<V3, 3>> new_pos_;
   std::vector<int> new_mark_;  // per face: stamp of the move that replaces it
+  mutable std::vector<double> angle_;  // per face: smallest angle, -1 when not known
   int new_stamp_ = 0;
   struct PairHash {
     size_t operator()(const std::pair<int, int>& e) const {
@@ -319,7 +330,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   for (int x : nw) changed_[x] = 1;
   if (moved) {
     r_.vertices[w] = target;
-    for (int f : fw) grid_.add(f);
+    for (int f : fw) refile(f);
   }
   const std::vector<int> link = nv;  // copies: compensate() reuses the scratch vectors
   for (int f : fv) {
@@ -332,7 +343,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
     for (int& x : t)
       if (x == v) x = w;
     vf_[w].push_back(f);
-    grid_.add(f);
+    refile(f);
   }
   vf_[v].clear();
   // Line edges of v now start at w (v's neighbours are the vertices of its old faces).
@@ -398,6 +409,7 @@ bool Collapser::try_flip(int f, int z) {
   if (!stays_clear()) return false;
   r_.faces[f] = {u, d, c};
   r_.faces[g] = {d, v, c};
+  angle_[f] = angle_[g] = -1;
   vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
   vf_[v].erase(std::remove(vf_[v].begin(), vf_[v].end(), f), vf_[v].end());
   vf_[c].push_back(g);
@@ -422,12 +434,13 @@ bool Collapser::try_flip(int f, int z) {
       vf_[v].push_back(f);
       r_.faces[f] = {u, v, c};
       r_.faces[g] = {v, u, d};
+      angle_[f] = angle_[g] = -1;
       return false;
     }
     volume_budget_ -= std::fabs(dv6) / 6;
   }
-  grid_.add(f);
-  grid_.add(g);
+  refile(f);
+  refile(g);
   cut_[f] = cut_[g] = cut_[f] || cut_[g];  // both new faces replace a cut face: treated on
   for (int x : {u, v, c, d})
     for (int h : vf_[x])
@@ -486,7 +499,7 @@ bool Collapser::try_relocate(int x) {
   if (!stays_clear()) return false;
   r_.vertices[x] = moved;
   for (int f : fx) {
-    grid_.add(f);
+    refile(f);
     for (int y : r_.faces[f]) changed_[y] = 1;
   }
   return true;
@@ -522,7 +535,7 @@ bool Collapser::compensate(int x, double dv6) {
   if (!stays_clear()) return false;
   r_.vertices[x] = moved;
   for (int f : fx) {
-    grid_.add(f);
+    refile(f);
     for (int y : r_.faces[f]) changed_[y] = 1;
   }
   return true;
