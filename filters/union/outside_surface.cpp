@@ -67,18 +67,27 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     uint64_t key;
     int side;  // 3*s + z
   };
-  std::vector<HalfEdge> he;
-  he.reserve(3 * size_t(ns));
-  for (int s = 0; s < ns; ++s) {
-    if (dropped[s]) continue;
-    for (int z = 0; z < 3; ++z) {
-      const int u = sub[s][z], w = sub[s][(z + 1) % 3];
-      he.push_back({(uint64_t(uint32_t(std::min(u, w))) << 32) | uint32_t(std::max(u, w)), 3 * s + z});
+  // Ordered by (key, side): first bucketed by the edge's lower point (a counting sort,
+  // linear in the half-edges), then each small bucket sorted.
+  std::vector<int> bucket_begin(size_t(points.size()) + 1, 0);
+  for (int s = 0; s < ns; ++s)
+    if (!dropped[s])
+      for (int z = 0; z < 3; ++z) ++bucket_begin[std::min(sub[s][z], sub[s][(z + 1) % 3]) + 1];
+  std::partial_sum(bucket_begin.begin(), bucket_begin.end(), bucket_begin.begin());
+  std::vector<HalfEdge> he(bucket_begin.back());
+  {
+    std::vector<int> next(bucket_begin.begin(), bucket_begin.end() - 1);
+    for (int s = 0; s < ns; ++s) {  // sides in increasing order within each bucket
+      if (dropped[s]) continue;
+      for (int z = 0; z < 3; ++z) {
+        const int u = sub[s][z], w = sub[s][(z + 1) % 3];
+        he[next[std::min(u, w)]++] = {(uint64_t(uint32_t(std::min(u, w))) << 32) | uint32_t(std::max(u, w)), 3 * s + z};
+      }
     }
   }
-  std::sort(he.begin(), he.end(), [](const HalfEdge& a, const HalfEdge& b) {
-    return a.key < b.key || (a.key == b.key && a.side < b.side);
-  });
+  for (size_t p = 0; p + 1 < bucket_begin.size(); ++p)  // insertion sort by key: stable, buckets are small
+    for (int i = bucket_begin[p] + 1; i < bucket_begin[p + 1]; ++i)
+      for (int j = i; j > bucket_begin[p] && he[j - 1].key > he[j].key; --j) std::swap(he[j - 1], he[j]);
   std::vector<int> group_begin;
   std::vector<int> group_of(3 * size_t(ns), -1);
   for (size_t i = 0; i < he.size(); ++i) {

@@ -2,18 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <set>
-#include <unordered_map>
 #include <unordered_set>
 
-#include "union/exact.h"
+#include "union/face_clearance.h"
 
 namespace mr::surface_union {
 
 namespace {
 
-using V3 = std::array<double, 3>;
 constexpr double kPi = 3.14159265358979323846;
 // A star is smooth when every face normal is within ~45 degrees of the star's mean
 // normal (CAD creases of 90 degrees are not; sphere meshes and blobs are).
@@ -43,8 +39,8 @@ double face_min_angle(const V3& a, const V3& b, const V3& c) {
 class Collapser {
 public:
   Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change)
-      : frozen(r.vertices.size(), 0), r_(r), alive_(r.faces.size(), 1), touched_(r.faces.size(), 0), cut_(cut),
-        vf_(r.vertices.size()) {
+      : r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()), grid_(r.vertices, r.faces),
+        new_mark_(r.faces.size(), 0), angle_(r.faces.size(), -1) {
     double volume = 0;
     for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
     volume_budget_ = max_volume_change * std::fabs(volume);
@@ -66,17 +62,21 @@ public:
   int run(double threshold_rad);
   void run_passes(double threshold_rad);
   void compact();
-  /// Vertices that may neither move nor be removed, nor have their faces flipped.
-  std::vector<char> frozen;
-  /// Faces whose geometry changed (indices before compaction).
-  std::vector<int> touched_faces() const;
-  bool alive(int f) const { return alive_[f] != 0; }
-  const Result& result() const { return r_; }
 
 private:
   static std::pair<int, int> ekey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
   V3 P(int v) const { return r_.vertices[v]; }
-  double min_angle(int f) const { return face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2])); }
+  /// Smallest angle of face f, kept until the face changes (every candidate move
+  /// compares the angles of the same star).
+  double min_angle(int f) const {
+    if (angle_[f] < 0) angle_[f] = face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2]));
+    return angle_[f];
+  }
+  /// Face f has new corners or a moved corner: filed again, its angle recomputed.
+  void refile(int f) {
+    grid_.add(f);
+    angle_[f] = -1;
+  }
   /// Face f with its corner x at `moved` (into q); false if it would degenerate or turn over.
   bool moved_face(int f, int x, const V3& moved, V3 q[3]) const {
     const auto& t = r_.faces[f];
@@ -88,7 +88,7 @@ private:
   /// Moves v onto w if allowed; with `apply` false only checks, and `dv` gets the volume change.
   bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
   bool try_flip(int f, int z);      // flips side z of face f
-  /// Moves free vertex x (no line, not frozen) along the volume gradient of its star so
+  /// Moves free vertex x (no line) along the volume gradient of its star so
   /// that the enclosed volume changes by -dv6 / 6, when no face flips or becomes (more
   /// of) a sliver and the move stays within the deviation bound.
   bool compensate(int x, double dv6);
@@ -96,6 +96,27 @@ private:
   /// stays the same (perpendicular to its star's volume gradient), when that raises the
   /// worst angle of its faces and flips none.
   bool try_relocate(int x);
+  // A move proposes the faces it would change (new corners and positions) and lists
+  // the faces it replaces; stays_clear() checks them exactly against each other and
+  // every other live face nearby before the move is applied.
+  void start_move() {
+    replaced_.clear();
+    new_ids_.clear();
+    new_pos_.clear();
+  }
+  /// Face f with corner `from` replaced by `to` at position `at` (from == to: a move).
+  void propose(int f, int from, int to, const V3& at) {
+    replaced_.push_back(f);
+    std::array<int, 3> t = r_.faces[f];
+    std::array<V3, 3> q;
+    for (int z = 0; z < 3; ++z) {
+      if (t[z] == from) t[z] = to;
+      q[z] = t[z] == to ? at : P(t[z]);
+    }
+    new_ids_.push_back(t);
+    new_pos_.push_back(q);
+  }
+  bool stays_clear();
   void live_faces(int v, std::vector<int>& out) const {
     out.clear();
     for (int f : vf_[v])
@@ -108,10 +129,17 @@ private:
 
   Result& r_;
   std::vector<char> alive_;
-  std::vector<char> touched_;
   std::vector<char> changed_;  // vertices whose neighbourhood changed in this pass
   std::vector<char> cut_;
   std::vector<std::vector<int>> vf_;
+  FaceGrid grid_;  // where the faces are now, for the crossing checks
+  std::vector<int> replaced_, near_;
+  std::vector<std::array<V3, 2>> scratch_boxes_;
+  std::vector<std::array<int, 3>> new_ids_;
+  std::vector<std::array<V3, 3>> new_pos_;
+  std::vector<int> new_mark_;  // per face: stamp of the move that replaces it
+  mutable std::vector<double> angle_;  // per face: smallest angle, -1 when not known
+  int new_stamp_ = 0;
   struct PairHash {
     size_t operator()(const std::pair<int, int>& e) const {
       const uint64_t h = (uint64_t(uint32_t(e.first)) << 32 | uint32_t(e.second)) * 0x9E3779B97F4A7C15ull;
@@ -130,15 +158,45 @@ public:
   int collapses_ = 0, flips_ = 0;
 };
 
-std::vector<int> Collapser::touched_faces() const {
-  std::vector<int> out;
-  for (int f = 0; f < int(r_.faces.size()); ++f)
-    if (alive_[f] && touched_[f]) out.push_back(f);
-  return out;
+bool Collapser::stays_clear() {
+  ++new_stamp_;
+  for (int f : replaced_) new_mark_[f] = new_stamp_;
+  // One lookup for the whole move: the box around all new faces.
+  std::vector<std::array<V3, 2>>& boxes = scratch_boxes_;
+  boxes.resize(new_ids_.size());
+  V3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (size_t i = 0; i < new_ids_.size(); ++i) {
+    const V3* q = new_pos_[i].data();
+    V3 flo = q[0], fhi = q[0];
+    for (int z = 1; z < 3; ++z)
+      for (int k = 0; k < 3; ++k) { flo[k] = std::min(flo[k], q[z][k]); fhi[k] = std::max(fhi[k], q[z][k]); }
+    boxes[i] = {flo, fhi};
+    for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], flo[k]); hi[k] = std::max(hi[k], fhi[k]); }
+  }
+  grid_.near(lo, hi, near_);
+  for (int g : near_) {
+    if (!alive_[g] || new_mark_[g] == new_stamp_) continue;
+    // Every pair, also with the star's own ring: a fold at a crease crosses faces
+    // that share a corner with the move.
+    const auto& t = r_.faces[g];
+    const V3 gq[3] = {P(t[0]), P(t[1]), P(t[2])};
+    V3 glo = gq[0], ghi = gq[0];
+    for (int z = 1; z < 3; ++z)
+      for (int k = 0; k < 3; ++k) { glo[k] = std::min(glo[k], gq[z][k]); ghi[k] = std::max(ghi[k], gq[z][k]); }
+    for (size_t i = 0; i < new_ids_.size(); ++i) {
+      bool apart = false;
+      for (int k = 0; k < 3; ++k) apart |= ghi[k] < boxes[i][0][k] || boxes[i][1][k] < glo[k];
+      if (apart) continue;
+      if (triangles_meet(new_ids_[i], new_pos_[i].data(), t, gq)) return false;
+    }
+  }
+  for (size_t i = 0; i < new_ids_.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (triangles_meet(new_ids_[i], new_pos_[i].data(), new_ids_[j], new_pos_[j].data())) return false;
+  return true;
 }
 
 bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
-  if (frozen[v]) return false;
   // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2.
   const bool vw_line = line_.count(ekey(v, w)) > 0;
   if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) return false;
@@ -175,8 +233,8 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   // Target: w's position, moved along the volume gradient of the new star so that the
   // enclosed volume stays the same (Lindstrom-Turk); the move is tiny where the
   // surface is nearly flat. Coordinates relative to w keep the sums accurate. w stays
-  // put when it is frozen or on a line other than the one v slides along.
-  const bool w_free = !frozen[w] && (line_degree_[w] == 0 || (vw_line && line_degree_[w] == 2));
+  // put when it is on a line other than the one v slides along.
+  const bool w_free = line_degree_[w] == 0 || (vw_line && line_degree_[w] == 2);
   const V3 o = P(w);
   auto rel = [&](int x) { return sub3(P(x), o); };
   double s_old = 0;  // six times the old volume of the star (relative to o)
@@ -254,25 +312,38 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   // Score: the volume change plus the volume swept by the compensating move.
   if (dv_out) *dv_out = std::fabs(dv) / 6 + norm(p) * std::sqrt(gg) / 6;
   if (!apply) return true;
+  // The new star must not run into the rest of the surface (thin plates, nearly
+  // touching bodies): checked exactly before anything changes.
+  start_move();
+  for (int f : fv) {
+    const auto& t = r_.faces[f];
+    if (std::find(t.begin(), t.end(), w) != t.end()) replaced_.push_back(f);  // dies
+    else propose(f, v, w, target);
+  }
+  if (moved)
+    for (int f : fw)
+      if (std::find(r_.faces[f].begin(), r_.faces[f].end(), v) == r_.faces[f].end()) propose(f, w, w, target);
+  if (!stays_clear()) return false;
   const double budget_before = volume_budget_;
   volume_budget_ -= std::fabs(dv) / 6;
   for (int x : nv) changed_[x] = 1;
   for (int x : nw) changed_[x] = 1;
   if (moved) {
     r_.vertices[w] = target;
-    for (int f : fw) touched_[f] = 1;
+    for (int f : fw) refile(f);
   }
   const std::vector<int> link = nv;  // copies: compensate() reuses the scratch vectors
   for (int f : fv) {
     auto& t = r_.faces[f];
-    touched_[f] = 1;
     if (std::find(t.begin(), t.end(), w) != t.end()) {
       alive_[f] = 0;
+      grid_.remove(f);
       continue;
     }
     for (int& x : t)
       if (x == v) x = w;
     vf_[w].push_back(f);
+    refile(f);
   }
   vf_[v].clear();
   // Line edges of v now start at w (v's neighbours are the vertices of its old faces).
@@ -302,7 +373,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
 
 bool Collapser::try_flip(int f, int z) {
   const int u = r_.faces[f][z], v = r_.faces[f][(z + 1) % 3], c = r_.faces[f][(z + 2) % 3];
-  if (line_.count(ekey(u, v)) || frozen[u] || frozen[v] || frozen[c]) return false;
+  if (line_.count(ekey(u, v)) ) return false;
   int g = -1;
   for (int h : vf_[v])
     if (alive_[h] && h != f)
@@ -327,13 +398,18 @@ bool Collapser::try_flip(int f, int z) {
   const double before = std::min(min_angle(f), min_angle(g));
   const double after = std::min(face_min_angle(P(u), P(d), P(c)), face_min_angle(P(d), P(v), P(c)));
   if (!(after > before)) return false;
-  if (frozen[d]) return false;
   // Six times the volume change, relative to u for accuracy.
   auto rel = [&](int x) { return sub3(P(x), P(u)); };
   const double dv6 = det(rel(u), rel(d), rel(c)) + det(rel(d), rel(v), rel(c)) - det(rel(u), rel(v), rel(c)) -
                      det(rel(v), rel(u), rel(d));
+  start_move();
+  replaced_ = {f, g};
+  new_ids_ = {{u, d, c}, {d, v, c}};
+  new_pos_ = {{P(u), P(d), P(c)}, {P(d), P(v), P(c)}};
+  if (!stays_clear()) return false;
   r_.faces[f] = {u, d, c};
   r_.faces[g] = {d, v, c};
+  angle_[f] = angle_[g] = -1;
   vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
   vf_[v].erase(std::remove(vf_[v].begin(), vf_[v].end(), f), vf_[v].end());
   vf_[c].push_back(g);
@@ -358,11 +434,13 @@ bool Collapser::try_flip(int f, int z) {
       vf_[v].push_back(f);
       r_.faces[f] = {u, v, c};
       r_.faces[g] = {v, u, d};
+      angle_[f] = angle_[g] = -1;
       return false;
     }
     volume_budget_ -= std::fabs(dv6) / 6;
   }
-  touched_[f] = touched_[g] = 1;
+  refile(f);
+  refile(g);
   cut_[f] = cut_[g] = cut_[f] || cut_[g];  // both new faces replace a cut face: treated on
   for (int x : {u, v, c, d})
     for (int h : vf_[x])
@@ -372,7 +450,7 @@ bool Collapser::try_flip(int f, int z) {
 }
 
 bool Collapser::try_relocate(int x) {
-  if (frozen[x] || line_degree_[x] > 0) return false;
+  if (line_degree_[x] > 0) return false;
   std::vector<int>& fx = scratch_fx_;
   live_faces(x, fx);
   if (fx.empty()) return false;
@@ -416,16 +494,19 @@ bool Collapser::try_relocate(int x) {
     after = std::min(after, a);
   }
   if (!(after > before)) return false;
+  start_move();
+  for (int f : fx) propose(f, x, x, moved);
+  if (!stays_clear()) return false;
   r_.vertices[x] = moved;
   for (int f : fx) {
-    touched_[f] = 1;
+    refile(f);
     for (int y : r_.faces[f]) changed_[y] = 1;
   }
   return true;
 }
 
 bool Collapser::compensate(int x, double dv6) {
-  if (frozen[x] || line_degree_[x] > 0) return false;
+  if (line_degree_[x] > 0) return false;
   std::vector<int>& fx = scratch_fx_;
   live_faces(x, fx);
   const V3 o = P(x);
@@ -449,9 +530,12 @@ bool Collapser::compensate(int x, double dv6) {
     if (!moved_face(f, x, moved, q)) return false;
     if (face_min_angle(q[0], q[1], q[2]) < std::min(min_angle(f), threshold_)) return false;
   }
+  start_move();
+  for (int f : fx) propose(f, x, x, moved);
+  if (!stays_clear()) return false;
   r_.vertices[x] = moved;
   for (int f : fx) {
-    touched_[f] = 1;
+    refile(f);
     for (int y : r_.faces[f]) changed_[y] = 1;
   }
   return true;
@@ -556,230 +640,12 @@ double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vec
   return best;
 }
 
-namespace {
-
-/// Segment (p, q) meets the closed triangle (a, b, c) (exact; coplanar counts as a hit).
-bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
-  const int sp = orient3d(a.data(), b.data(), c.data(), p.data());
-  const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
-  if (sp * sq > 0) return false;
-  if (sp == 0 && sq == 0) {  // coplanar: closed segment against closed triangle in 2D
-    const V3 n = cross(sub3(b, a), sub3(c, a));
-    int k = 0;
-    for (int t = 1; t < 3; ++t)
-      if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
-    const Projection pr{(k + 1) % 3, (k + 2) % 3};
-    // Doubles are exact inputs: the filtered 2D orientation with an integer fallback.
-    auto o = [&](const V3& x, const V3& y, const V3& z) { return orient2d(x.data(), y.data(), z.data(), pr.i, pr.j); };
-    const int sign = o(a, b, c);  // orientation of the triangle in this projection
-    const V3 &P = p, &Q = q, &A = a, &B = b, &C = c;
-    auto inside = [&](const V3& x) { return sign * o(A, B, x) >= 0 && sign * o(B, C, x) >= 0 && sign * o(C, A, x) >= 0; };
-    if (inside(P) || inside(Q)) return true;
-    auto on_segment = [&](const V3& x, const V3& y, const V3& z) {  // z on closed xy, collinear
-      for (int k : {pr.i, pr.j})
-        if (std::min(x[k], y[k]) > z[k] || std::max(x[k], y[k]) < z[k]) return false;
-      return true;
-    };
-    const V3* T[3] = {&A, &B, &C};
-    for (int e = 0; e < 3; ++e) {
-      const V3 &X = *T[e], &Y = *T[(e + 1) % 3];
-      const int o1 = o(P, Q, X), o2 = o(P, Q, Y), o3 = o(X, Y, P), o4 = o(X, Y, Q);
-      if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-      if ((o1 == 0 && on_segment(P, Q, X)) || (o2 == 0 && on_segment(P, Q, Y)) || (o3 == 0 && on_segment(X, Y, P)) ||
-          (o4 == 0 && on_segment(X, Y, Q)))
-        return true;
-    }
-    return false;
-  }
-  const int s1 = orient3d(p.data(), q.data(), a.data(), b.data());
-  const int s2 = orient3d(p.data(), q.data(), b.data(), c.data());
-  const int s3 = orient3d(p.data(), q.data(), c.data(), a.data());
-  return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
-}
-
-/// Coplanar faces F and G are separated by one of their edge lines: the other face lies
-/// strictly on its outer side but for corners shared with that edge, so they meet at
-/// most in shared corners. A cheap exact rejection before the closed segment tests.
-bool coplanar_separated(const std::vector<V3>& V, const std::array<int, 3>& F, const std::array<int, 3>& G) {
-  const V3 n = cross(sub3(V[F[1]], V[F[0]]), sub3(V[F[2]], V[F[0]]));
-  int k = 0;
-  for (int t = 1; t < 3; ++t)
-    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
-  const int i = (k + 1) % 3, j = (k + 2) % 3;
-  auto o = [&](int x, int y, int z) { return orient2d(V[x].data(), V[y].data(), V[z].data(), i, j); };
-  for (int side = 0; side < 2; ++side) {
-    const auto& A = side == 0 ? F : G;
-    const auto& B = side == 0 ? G : F;
-    const int sa = o(A[0], A[1], A[2]);
-    for (int z = 0; z < 3; ++z) {
-      const int a0 = A[z], a1 = A[(z + 1) % 3];
-      bool separated = true;
-      for (int m = 0; m < 3 && separated; ++m) {
-        const int b = B[m];
-        if (V[b] == V[a0] || V[b] == V[a1]) continue;  // a shared corner on this edge
-        separated = sa * o(a0, a1, b) < 0;
-      }
-      if (separated) return true;
-    }
-  }
-  return false;
-}
-
-/// Faces f and g (of one mesh) intersect other than along what they share.
-bool faces_meet(const Result& r, int f, int g) {
-  const auto &F = r.faces[f], &G = r.faces[g];
-  int shared = 0, sf = -1, sg = -1;
-  // Shared corners by position: shells that only touch have distinct, coincident vertices.
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (F[i] == G[j] || r.vertices[F[i]] == r.vertices[G[j]]) { ++shared; sf = i; sg = j; }
-  if (shared >= 2) return false;  // neighbours across an edge
-  const auto& V = r.vertices;
-  // Separating planes: a face strictly on one side of the other's plane (but for a
-  // shared corner) cannot meet it. Coplanar pairs go to the tests below.
-  for (int k = 0; k < 2; ++k) {
-    const auto& A = k == 0 ? F : G;
-    const auto& B = k == 0 ? G : F;
-    int pos = 0, neg = 0, zero = 0;
-    for (int i = 0; i < 3; ++i) {
-      const int o = orient3d(V[A[0]].data(), V[A[1]].data(), V[A[2]].data(), V[B[i]].data());
-      pos += o > 0;
-      neg += o < 0;
-      zero += o == 0;
-    }
-    if (zero == 3) {
-      if (coplanar_separated(V, F, G)) return false;
-      break;
-    }
-    if (pos + shared == 3 || neg + shared == 3) {
-      // All but the shared corner strictly on one side (the shared corner has o == 0).
-      if (shared == 0 || zero == 1) return false;
-    }
-  }
-  if (shared == 1) {  // only the edges opposite the shared corner can cross the other face
-    return segment_meets_triangle(V[F[(sf + 1) % 3]], V[F[(sf + 2) % 3]], V[G[0]], V[G[1]], V[G[2]]) ||
-           segment_meets_triangle(V[G[(sg + 1) % 3]], V[G[(sg + 2) % 3]], V[F[0]], V[F[1]], V[F[2]]);
-  }
-  for (int e = 0; e < 3; ++e)
-    if (segment_meets_triangle(V[F[e]], V[F[(e + 1) % 3]], V[G[0]], V[G[1]], V[G[2]]) ||
-        segment_meets_triangle(V[G[e]], V[G[(e + 1) % 3]], V[F[0]], V[F[1]], V[F[2]]))
-      return true;
-  return false;
-}
-
-/// Touched faces of `c` that meet another live face, found through a grid of boxes.
-std::vector<int> new_intersections(const Collapser& c) {
-  const Result& r = c.result();
-  const std::vector<int> touched = c.touched_faces();
-  std::vector<int> bad;
-  if (touched.empty()) return bad;
-  auto box = [&](int f, V3& lo, V3& hi) {
-    lo = hi = r.vertices[r.faces[f][0]];
-    for (int z = 1; z < 3; ++z)
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], r.vertices[r.faces[f][z]][k]);
-        hi[k] = std::max(hi[k], r.vertices[r.faces[f][z]][k]);
-      }
-  };
-  V3 all_lo{1e300, 1e300, 1e300}, all_hi{-1e300, -1e300, -1e300};
-  std::vector<double> sizes;
-  for (int f = 0; f < int(r.faces.size()); ++f) {
-    if (!c.alive(f)) continue;
-    V3 lo, hi;
-    box(f, lo, hi);
-    for (int k = 0; k < 3; ++k) { all_lo[k] = std::min(all_lo[k], lo[k]); all_hi[k] = std::max(all_hi[k], hi[k]); }
-    sizes.push_back(std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
-  }
-  // Cells of twice the median face size (long CAD faces would make a mean too coarse),
-  // but not so small that the grid gets huge.
-  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
-  const double extent = std::max({all_hi[0] - all_lo[0], all_hi[1] - all_lo[1], all_hi[2] - all_lo[2]});
-  const double cell = std::max({2 * sizes[sizes.size() / 2], extent / 200, 1e-300});
-  auto cell_of = [&](double x, int k) { return int64_t(std::floor((x - all_lo[k]) / cell)); };
-  auto key = [](int64_t i, int64_t j, int64_t k) { return (i * 73856093) ^ (j * 19349663) ^ (k * 83492791); };
-  // Only cells that a touched face covers are ever looked at: the others stay empty.
-  std::unordered_map<int64_t, std::vector<int>> grid;
-  for (int f : touched) {
-    V3 lo, hi;
-    box(f, lo, hi);
-    for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0); ++i)
-      for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1); ++j)
-        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) grid[key(i, j, k)];
-  }
-  for (int f = 0; f < int(r.faces.size()); ++f) {
-    if (!c.alive(f)) continue;
-    V3 lo, hi;
-    box(f, lo, hi);
-    for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0); ++i)
-      for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1); ++j)
-        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2); ++k) {
-          auto it = grid.find(key(i, j, k));
-          if (it != grid.end()) it->second.push_back(f);
-        }
-  }
-  std::vector<int> seen(r.faces.size(), 0);
-  std::vector<char> is_touched(r.faces.size(), 0);
-  for (int f : touched) is_touched[f] = 1;
-  int stamp = 0;
-  for (int f : touched) {
-    V3 lo, hi;
-    box(f, lo, hi);
-    ++stamp;
-    bool hit = false;
-    for (int64_t i = cell_of(lo[0], 0); i <= cell_of(hi[0], 0) && !hit; ++i)
-      for (int64_t j = cell_of(lo[1], 1); j <= cell_of(hi[1], 1) && !hit; ++j)
-        for (int64_t k = cell_of(lo[2], 2); k <= cell_of(hi[2], 2) && !hit; ++k) {
-          auto it = grid.find(key(i, j, k));
-          if (it == grid.end()) continue;
-          for (int g : it->second) {
-            // A pair of touched faces is checked once, from the lower index.
-            if (g == f || seen[g] == stamp || (is_touched[g] && g < f)) continue;
-            seen[g] = stamp;
-            V3 glo, ghi;
-            box(g, glo, ghi);
-            bool apart = false;
-            for (int a = 0; a < 3; ++a) apart |= ghi[a] < lo[a] || hi[a] < glo[a];
-            if (!apart && faces_meet(r, f, g)) {
-              hit = true;
-              if (is_touched[g]) bad.push_back(g);  // its own check skipped this pair
-              break;
-            }
-          }
-        }
-    if (hit) bad.push_back(f);
-  }
-  return bad;
-}
-
-}  // namespace
-
 int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
                      double max_volume_change) {
-  // Moves are local and checked for shape, not for running into another part of the
-  // surface (thin plates); so the result is checked exactly and, where a moved face
-  // meets another, the step is redone with those vertices and their neighbours frozen.
-  std::vector<char> frozen(r.vertices.size(), 0);
-  for (int attempt = 0; attempt < 4; ++attempt) {
-    Result trial = r;
-    Collapser c(trial, cut, max_deviation, max_volume_change);
-    c.frozen = frozen;
-    const int n = c.run(sliver_angle_deg * kPi / 180);
-    const std::vector<int> bad = new_intersections(c);
-    if (bad.empty()) {
-      c.compact();
-      r = std::move(trial);
-      return n;
-    }
-    // Freeze the original vertices of the offending neighbourhoods.
-    std::set<int> region;
-    for (int f : bad)
-      for (int v : trial.faces[f]) region.insert(v);
-    for (int f = 0; f < int(r.faces.size()); ++f)
-      for (int v : r.faces[f])
-        if (region.count(v))
-          for (int x : r.faces[f]) frozen[x] = 1;
-  }
-  return 0;  // could not improve without self-intersections: keep the exact arrangement
+  Collapser c(r, cut, max_deviation, max_volume_change);
+  const int n = c.run(sliver_angle_deg * kPi / 180);
+  c.compact();
+  return n;
 }
 
 }  // namespace mr::surface_union

@@ -1,7 +1,8 @@
 // Surface improvement after the cut: faces with a small angle are removed by
 // collapsing their shortest edge into one of its ends, when no face normal flips,
-// the worst angle around improves, the intersection lines keep their shape and the
-// surface moves less than a bound.
+// the worst angle around improves, the intersection lines keep their shape, the
+// surface moves less than a bound and no new face crosses another (checked exactly
+// for every move before it is applied).
 #pragma once
 
 #include "union/surface_union.h"

@@ -516,3 +516,17 @@ def test_sliver_step_on_a_coarse_fifty_sphere_cluster_keeps_the_volume():
     unite(ms, bodies=COMPONENTS)
     assert check_union(ms, 1) == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL)
     assert (angles(ms.mesh(1)).min(1) < 5.0).sum() <= 10
+
+
+def test_sliver_step_checks_each_move_so_no_region_is_left_frozen():
+    # 100 icospheres of 320 triangles, the benchmark's seed: spheres nearly touching, where a
+    # sliver move can push a face through another sheet. Each move is checked exactly before
+    # it is applied. Measured: 8 faces under 5 deg left (smallest 1.6 deg), volume -3.8e-7;
+    # with the former check after the whole step (and a redo with the offending region
+    # frozen, its slivers untreated) 19 faces down to 0.28 deg were left.
+    ms, ref = benchmark_cluster(100, subdiv=2)
+    unite(ms, bodies=COMPONENTS)
+    assert check_union(ms, 1) == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL)
+    small = angles(ms.mesh(1)).min(1)
+    assert (small < 5.0).sum() <= 10
+    assert small.min() >= 1.0

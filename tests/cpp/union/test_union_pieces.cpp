@@ -1,11 +1,13 @@
 // Unit tests of the union's exact building blocks.
 #include "union/candidate_pairs.h"
 #include "union/exact.h"
+#include "union/face_clearance.h"
 #include "union/face_triangulation.h"
 #include "union/point_table.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace mr::surface_union;
@@ -111,4 +113,53 @@ TEST(UnionPairs, GridFindsOnlyOverlappingPairsOfDifferentBodies) {
   const auto pairs = candidate_pairs(s);
   ASSERT_EQ(pairs.size(), 1u);
   EXPECT_EQ(pairs[0], std::make_pair(0, 1));
+}
+
+TEST(UnionClearance, TrianglesMeetOnlyBeyondWhatTheyShare) {
+  const std::array<int, 3> f{0, 1, 2};
+  const V3 F[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  // Coplanar neighbours at one corner, with a side on the line of F's side (a straight
+  // intersection line): they share only the corner.
+  const V3 G[3] = {{0, 0, 0}, {-1, 0, 0}, {0, -1, 0}};
+  EXPECT_FALSE(triangles_meet(f, F, {0, 3, 4}, G));
+  // The same corner, but the second triangle folds over the first.
+  const V3 H[3] = {{0, 0, 0}, {0.5, 0.1, 0}, {0.1, 0.5, 0}};
+  EXPECT_TRUE(triangles_meet(f, F, {0, 5, 6}, H));
+  // Across a 90-degree crease, touching F's plane with one side only along F's side.
+  const V3 C[3] = {{0.2, 0, 0}, {0.8, 0, 0}, {0.5, 0, -1}};
+  EXPECT_TRUE(triangles_meet(f, F, {7, 8, 9}, C));  // lies on F's side: they meet there
+  const V3 D[3] = {{1.2, 0, 0}, {1.8, 0, 0}, {1.5, 0, -1}};
+  EXPECT_FALSE(triangles_meet(f, F, {7, 8, 9}, D));  // on the line beyond F's corner
+  // Across a crease with a shared corner: a side along F's side meets it, one leaving the
+  // corner away from F does not.
+  const V3 K[3] = {{0, 0, 0}, {0.5, 0, 0}, {0.2, 0, -1}};
+  EXPECT_TRUE(triangles_meet(f, F, {0, 14, 15}, K));
+  const V3 L[3] = {{0, 0, 0}, {-0.5, 0, 0}, {-0.2, 0, -1}};
+  EXPECT_FALSE(triangles_meet(f, F, {0, 14, 15}, L));
+  // A thin plate: a parallel triangle 1e-15 above does not meet, one through F does.
+  const V3 up[3] = {{0, 0, 1e-15}, {1, 0, 1e-15}, {0, 1, 1e-15}};
+  EXPECT_FALSE(triangles_meet(f, F, {10, 11, 12}, up));
+  const V3 through[3] = {{0.2, 0.2, -1}, {0.2, 0.2, 1}, {0.3, 0.2, 1}};
+  EXPECT_TRUE(triangles_meet(f, F, {10, 11, 12}, through));
+  // Neighbours across an edge never meet elsewhere.
+  const V3 N[3] = {{1, 0, 0}, {0, 0, 0}, {0.5, -1, 0.3}};
+  EXPECT_FALSE(triangles_meet(f, F, {1, 0, 13}, N));
+}
+
+TEST(UnionClearance, GridFindsFacesAtTheirNewPlace) {
+  std::vector<V3> v{{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0}, {5, 5, 5}, {5.1, 5, 5}, {5, 5.1, 5}, {-10, 0, 0}, {10, 0, 0}, {0, 10, 0}};
+  std::vector<std::array<int, 3>> f{{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};  // small, small far away, large
+  FaceGrid grid(v, f);
+  std::vector<int> near;
+  grid.near({0.05, 0.01, -0.1}, {0.06, 0.02, 0.1}, near);
+  std::sort(near.begin(), near.end());
+  EXPECT_EQ(near, (std::vector<int>{0, 2}));
+  for (int k = 3; k < 6; ++k) v[k][2] -= 5;  // the far face moves next to the others
+  grid.add(1);
+  grid.near({5.05, 5.01, -0.1}, {5.06, 5.02, 0.1}, near);  // also inside the large face's box
+  std::sort(near.begin(), near.end());
+  EXPECT_EQ(near, (std::vector<int>{1, 2}));
+  grid.remove(1);
+  grid.near({5.05, 5.01, -0.1}, {5.06, 5.02, 0.1}, near);
+  EXPECT_EQ(near, (std::vector<int>{2}));
 }

@@ -1,0 +1,294 @@
+#include "union/face_clearance.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "union/exact.h"
+
+namespace mr::surface_union {
+
+namespace {
+
+V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+/// Segment (p, q) meets the closed triangle (a, b, c) (exact; coplanar counts as a hit).
+bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+  const int sp = orient3d(a.data(), b.data(), c.data(), p.data());
+  const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
+  if (sp * sq > 0) return false;
+  if (sp == 0 && sq == 0) {  // coplanar: closed segment against closed triangle in 2D
+    const V3 n = cross(sub3(b, a), sub3(c, a));
+    int k = 0;
+    for (int t = 1; t < 3; ++t)
+      if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+    const Projection pr{(k + 1) % 3, (k + 2) % 3};
+    // Doubles are exact inputs: the filtered 2D orientation with an integer fallback.
+    auto o = [&](const V3& x, const V3& y, const V3& z) { return orient2d(x.data(), y.data(), z.data(), pr.i, pr.j); };
+    const int sign = o(a, b, c);  // orientation of the triangle in this projection
+    const V3 &P = p, &Q = q, &A = a, &B = b, &C = c;
+    auto inside = [&](const V3& x) { return sign * o(A, B, x) >= 0 && sign * o(B, C, x) >= 0 && sign * o(C, A, x) >= 0; };
+    if (inside(P) || inside(Q)) return true;
+    auto on_segment = [&](const V3& x, const V3& y, const V3& z) {  // z on closed xy, collinear
+      for (int k : {pr.i, pr.j})
+        if (std::min(x[k], y[k]) > z[k] || std::max(x[k], y[k]) < z[k]) return false;
+      return true;
+    };
+    const V3* T[3] = {&A, &B, &C};
+    for (int e = 0; e < 3; ++e) {
+      const V3 &X = *T[e], &Y = *T[(e + 1) % 3];
+      const int o1 = o(P, Q, X), o2 = o(P, Q, Y), o3 = o(X, Y, P), o4 = o(X, Y, Q);
+      if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+      if ((o1 == 0 && on_segment(P, Q, X)) || (o2 == 0 && on_segment(P, Q, Y)) || (o3 == 0 && on_segment(X, Y, P)) ||
+          (o4 == 0 && on_segment(X, Y, Q)))
+        return true;
+    }
+    return false;
+  }
+  const int s1 = orient3d(p.data(), q.data(), a.data(), b.data());
+  const int s2 = orient3d(p.data(), q.data(), b.data(), c.data());
+  const int s3 = orient3d(p.data(), q.data(), c.data(), a.data());
+  return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
+}
+
+/// Decides in the projection on the coordinate plane across axis k (both projected
+/// triangles non-degenerate, so each is mapped one to one): true when F and G meet at
+/// most in the shared corner (sf, sg; -1: none). Without a shared corner: an edge line
+/// with the other triangle strictly outside. With one: the two corner sectors at the
+/// shared corner have no side ray inside the other (convex sectors below 180 degrees
+/// then meet only at the apex). Exact on the doubles, and cheaper than the 3D tests:
+/// it decides neighbours in one plane (or nearly), where 3D orientations are zero or
+/// close to it.
+bool separated_in_projection(const V3 F[3], const V3 G[3], int sf, int sg, int k) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  auto o = [&](const V3& x, const V3& y, const V3& z) { return orient2d(x.data(), y.data(), z.data(), i, j); };
+  const int sides[2] = {o(F[0], F[1], F[2]), o(G[0], G[1], G[2])};
+  if (sides[0] == 0 || sides[1] == 0) return false;
+  if (sf >= 0) {
+    const V3& s = F[sf];
+    for (int side = 0; side < 2; ++side) {
+      const V3* A = side == 0 ? F : G;
+      const V3* B = side == 0 ? G : F;
+      const int sa = sides[side], ca = side == 0 ? sf : sg, cb = side == 0 ? sg : sf;
+      const V3 &a1 = A[(ca + 1) % 3], &a2 = A[(ca + 2) % 3];
+      for (const V3* ray : {&B[(cb + 1) % 3], &B[(cb + 2) % 3]})
+        if (sa * o(s, a1, *ray) >= 0 && sa * o(s, *ray, a2) >= 0) return false;
+    }
+    return true;
+  }
+  for (int side = 0; side < 2; ++side) {
+    const V3* A = side == 0 ? F : G;
+    const V3* B = side == 0 ? G : F;
+    const int sa = sides[side];
+    for (int z = 0; z < 3; ++z) {
+      // B in the closed outer half-plane of A's edge line; corners of B on the line
+      // (collinear cuts along one straight intersection segment) must lie beyond the
+      // edge's ends, compared along the line in the coordinate that changes most on it.
+      const V3 &e0 = A[z], &e1 = A[(z + 1) % 3];
+      const int c = std::fabs(e1[i] - e0[i]) >= std::fabs(e1[j] - e0[j]) ? i : j;
+      const double lo = std::min(e0[c], e1[c]), hi = std::max(e0[c], e1[c]);
+      bool separated = true, below = false, above = false;
+      for (int m = 0; m < 3 && separated; ++m) {
+        const int om = sa * o(e0, e1, B[m]);
+        if (om > 0) separated = false;
+        else if (om == 0) {
+          below |= B[m][c] < lo;
+          above |= B[m][c] > hi;
+          separated = B[m][c] < lo || B[m][c] > hi;
+        }
+      }
+      if (separated && !(below && above)) return true;
+    }
+  }
+  return false;
+}
+
+/// Sides of the points B[0..2] of A's plane, exactly: orient3d(A[0], A[1], A[2], B[i]).
+/// The normal is computed once for the three; the same filter bound as orient3d (this
+/// is its expansion along d - a), the exact predicate only where the filter cannot tell.
+void plane_sides(const V3 A[3], const V3 B[3], int out[3]) {
+  const double bx = A[1][0] - A[0][0], by = A[1][1] - A[0][1], bz = A[1][2] - A[0][2];
+  const double cx = A[2][0] - A[0][0], cy = A[2][1] - A[0][1], cz = A[2][2] - A[0][2];
+  const double n0 = by * cz - bz * cy, n1 = bz * cx - bx * cz, n2 = bx * cy - by * cx;
+  const double m0 = std::fabs(by * cz) + std::fabs(bz * cy), m1 = std::fabs(bz * cx) + std::fabs(bx * cz),
+               m2 = std::fabs(bx * cy) + std::fabs(by * cx);
+  for (int i = 0; i < 3; ++i) {
+    const double dx = B[i][0] - A[0][0], dy = B[i][1] - A[0][1], dz = B[i][2] - A[0][2];
+    const double det = dx * n0 + dy * n1 + dz * n2;
+    const double bound = 1e-14 * (std::fabs(dx) * m0 + std::fabs(dy) * m1 + std::fabs(dz) * m2);
+    out[i] = det > bound ? 1 : det < -bound ? -1 : orient3d(A[0].data(), A[1].data(), A[2].data(), B[i].data());
+  }
+}
+
+int largest_normal_axis(const V3 T[3]) {
+  const V3 n = cross(sub3(T[1], T[0]), sub3(T[2], T[0]));
+  int k = 0;
+  for (int t = 1; t < 3; ++t)
+    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+  return k;
+}
+
+}  // namespace
+
+bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array<int, 3>& b, const V3 G[3]) {
+  int shared = 0, sf = -1, sg = -1;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a[i] == b[j] || F[i] == G[j]) { ++shared; sf = i; sg = j; }
+  if (shared >= 2) return false;  // neighbours across an edge
+  // Separating planes: a face strictly on one side of the other's plane (but for a
+  // shared corner) cannot meet it (neighbours on a curved surface).
+  for (int k = 0; k < 2; ++k) {
+    const V3* A = k == 0 ? F : G;
+    const V3* B = k == 0 ? G : F;
+    int pos = 0, neg = 0, zero = 0, on[3], sides[3];
+    plane_sides(A, B, sides);
+    for (int i = 0; i < 3; ++i) {
+      const int o = sides[i];
+      pos += o > 0;
+      neg += o < 0;
+      if (o == 0) on[zero++] = i;
+    }
+    // B touches A's plane from one side (faces along a crease): only its corner or
+    // side in the plane can meet A.
+    if (shared == 0 && (pos == 0 || neg == 0) && (zero == 1 || zero == 2))
+      return segment_meets_triangle(B[on[0]], B[on[zero - 1]], A[0], A[1], A[2]);
+    // The same with a shared corner s: B's side (s, x) in A's plane meets A beyond s
+    // exactly when it leaves s into A's corner sector (seen across A's largest normal
+    // component, where A is not degenerate).
+    if (shared == 1 && (pos == 0 || neg == 0) && zero == 2) {
+      const int ca = k == 0 ? sf : sg, cb = k == 0 ? sg : sf;
+      const V3& x = B[on[0]] == B[cb] ? B[on[1]] : B[on[0]];
+      const int ka = largest_normal_axis(A), i = (ka + 1) % 3, j = (ka + 2) % 3;
+      auto o = [&](const V3& p, const V3& q, const V3& r) { return orient2d(p.data(), q.data(), r.data(), i, j); };
+      const int sa = o(A[0], A[1], A[2]);
+      const V3 &s = A[ca], &a1 = A[(ca + 1) % 3], &a2 = A[(ca + 2) % 3];
+      return sa * o(s, a1, x) >= 0 && sa * o(s, x, a2) >= 0;
+    }
+    if (zero == 3) break;  // coplanar
+    // All but the shared corner strictly on one side (the shared corner has o == 0).
+    if ((pos + shared == 3 || neg + shared == 3) && (shared == 0 || zero == 1)) return false;
+  }
+  // Then in a projection (across F's, then G's largest normal component): neighbours
+  // in one plane or across a crease.
+  const int kf = largest_normal_axis(F), kg = largest_normal_axis(G);
+  const int cf = shared == 1 ? sf : -1, cg = shared == 1 ? sg : -1;
+  if (separated_in_projection(F, G, cf, cg, kf) || (kg != kf && separated_in_projection(F, G, cf, cg, kg)))
+    return false;
+  if (shared == 1)  // only the edges opposite the shared corner can cross the other face
+    return segment_meets_triangle(F[(sf + 1) % 3], F[(sf + 2) % 3], G[0], G[1], G[2]) ||
+           segment_meets_triangle(G[(sg + 1) % 3], G[(sg + 2) % 3], F[0], F[1], F[2]);
+  for (int e = 0; e < 3; ++e)
+    if (segment_meets_triangle(F[e], F[(e + 1) % 3], G[0], G[1], G[2]) ||
+        segment_meets_triangle(G[e], G[(e + 1) % 3], F[0], F[1], F[2]))
+      return true;
+  return false;
+}
+
+FaceGrid::FaceGrid(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& faces)
+    : vertices_(vertices), faces_(faces), boxes_(faces.size()), level_(faces.size(), -1), seen_(faces.size(), 0) {
+  if (faces.empty()) return;
+  V3 lo_all{1e300, 1e300, 1e300}, hi_all{-1e300, -1e300, -1e300};
+  std::vector<double> sizes;
+  sizes.reserve(faces.size());
+  for (int f = 0; f < int(faces.size()); ++f) {
+    V3 lo, hi;
+    box(f, lo, hi);
+    for (int k = 0; k < 3; ++k) { lo_all[k] = std::min(lo_all[k], lo[k]); hi_all[k] = std::max(hi_all[k], hi[k]); }
+    sizes.push_back(std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
+  }
+  // The finest level fits the small faces (slivers along the cuts are much smaller
+  // than the median CAD face); each coarser level has 4x larger cells.
+  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+  const double extent = std::max({hi_all[0] - lo_all[0], hi_all[1] - lo_all[1], hi_all[2] - lo_all[2]});
+  cell_ = std::max({2 * sizes[sizes.size() / 2], extent / 4096, 1e-300});
+  origin_ = lo_all;
+  cells_.reserve(2 * faces.size());
+  for (int f = 0; f < int(faces.size()); ++f) add(f);
+}
+
+void FaceGrid::box(int f, V3& lo, V3& hi) const {
+  const auto& t = faces_[f];
+  lo = hi = vertices_[t[0]];
+  for (int z = 1; z < 3; ++z)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], vertices_[t[z]][k]);
+      hi[k] = std::max(hi[k], vertices_[t[z]][k]);
+    }
+}
+
+int64_t FaceGrid::cell_of(double x, int k, int level) const {
+  return int64_t(std::floor((x - origin_[k]) / (cell_ * double(int64_t(1) << (2 * level)))));
+}
+
+void FaceGrid::remove(int f) {
+  if (level_[f] < 0) return;
+  const int level = level_[f];
+  level_[f] = -1;
+  const auto& [lo, hi] = boxes_[f];
+  int64_t a[3], b[3];
+  for (int k = 0; k < 3; ++k) { a[k] = cell_of(lo[k], k, level); b[k] = cell_of(hi[k], k, level); }
+  for (int64_t i = a[0]; i <= b[0]; ++i)
+    for (int64_t j = a[1]; j <= b[1]; ++j)
+      for (int64_t k = a[2]; k <= b[2]; ++k) {
+        auto& cell = cells_[key(i, j, k, level)];
+        auto it = std::find(cell.begin(), cell.end(), f);
+        if (it != cell.end()) {
+          *it = cell.back();
+          cell.pop_back();
+        }
+      }
+}
+
+void FaceGrid::add(int f) {
+  remove(f);  // stale entries would make every later lookup longer
+  V3 lo, hi;
+  box(f, lo, hi);
+  boxes_[f] = {lo, hi};
+  // The finest level where the face's box is no larger than a cell: at most 2 cells a side.
+  const double size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  int level = 0;
+  while (level < kLevels - 1 && size > cell_ * double(int64_t(1) << (2 * level))) ++level;
+  levels_used_ = std::max(levels_used_, level + 1);
+  level_[f] = level;
+  level_faces_[level].push_back(f);  // may repeat: lookups see each face once
+  int64_t a[3], b[3];
+  for (int k = 0; k < 3; ++k) { a[k] = cell_of(lo[k], k, level); b[k] = cell_of(hi[k], k, level); }
+  for (int64_t i = a[0]; i <= b[0]; ++i)
+    for (int64_t j = a[1]; j <= b[1]; ++j)
+      for (int64_t k = a[2]; k <= b[2]; ++k) cells_[key(i, j, k, level)].push_back(f);
+}
+
+void FaceGrid::near(const V3& lo, const V3& hi, std::vector<int>& out) {
+  out.clear();
+  ++stamp_;
+  auto consider = [&](int g) {
+    if (seen_[g] == stamp_ || level_[g] < 0) return;
+    seen_[g] = stamp_;
+    const auto& gb = boxes_[g];
+    for (int c = 0; c < 3; ++c)
+      if (gb[1][c] < lo[c] || hi[c] < gb[0][c]) return;
+    out.push_back(g);
+  };
+  for (int level = 0; level < levels_used_; ++level) {
+    int64_t a[3], b[3];
+    for (int k = 0; k < 3; ++k) { a[k] = cell_of(lo[k], k, level); b[k] = cell_of(hi[k], k, level); }
+    // A long query box on a fine level: fewer faces there than cells to look up.
+    const double cells = double(b[0] - a[0] + 1) * double(b[1] - a[1] + 1) * double(b[2] - a[2] + 1);
+    if (cells > double(level_faces_[level].size())) {
+      for (int g : level_faces_[level]) consider(g);
+      continue;
+    }
+    for (int64_t i = a[0]; i <= b[0]; ++i)
+      for (int64_t j = a[1]; j <= b[1]; ++j)
+        for (int64_t k = a[2]; k <= b[2]; ++k) {
+          auto it = cells_.find(key(i, j, k, level));
+          if (it != cells_.end())
+            for (int g : it->second) consider(g);
+        }
+  }
+}
+
+}  // namespace mr::surface_union

@@ -1,0 +1,58 @@
+// Exact test whether two triangles of the output cross, and a grid of face boxes
+// that finds the faces near a place, so that every sliver move can be checked
+// against the rest of the surface (thin plates, nearly touching bodies) before it
+// is applied.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace mr::surface_union {
+
+using V3 = std::array<double, 3>;
+
+/// Triangles a and b (vertex ids and positions) intersect other than along what they
+/// share; corners are shared when their ids or their positions are equal (shells that
+/// only touch have distinct, coincident vertices). Exact (orientation predicates on
+/// the doubles).
+bool triangles_meet(const std::array<int, 3>& a, const V3 pa[3], const std::array<int, 3>& b, const V3 pb[3]);
+
+/// Uniform grid over the boxes of the faces of a mesh whose geometry changes. It only
+/// grows: a face whose geometry changed is added again at its new place; a lookup
+/// returns each face whose current box overlaps the query box exactly once.
+class FaceGrid {
+public:
+  /// Levels of cells, each 4x coarser than the one below; a face is filed on the
+  /// finest level whose cells are at least as large as its box, so long CAD faces and
+  /// tiny slivers both cover a few cells. Holds references to the mesh.
+  FaceGrid(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& faces);
+  /// Files face f at its current place (again, after its geometry changed).
+  void add(int f);
+  /// Face f is gone (lookups no longer return it until it is added again).
+  void remove(int f);
+  /// Faces whose box, as of their last add, overlaps [lo, hi].
+  void near(const V3& lo, const V3& hi, std::vector<int>& out);
+  void box(int f, V3& lo, V3& hi) const;
+
+private:
+  static constexpr int kLevels = 12;
+  int64_t cell_of(double x, int k, int level) const;
+  static int64_t key(int64_t i, int64_t j, int64_t k, int level) {
+    return (i * 73856093) ^ (j * 19349663) ^ (k * 83492791) ^ (int64_t(level) << 58);
+  }
+  const std::vector<V3>& vertices_;
+  const std::vector<std::array<int, 3>>& faces_;
+  V3 origin_{0, 0, 0};
+  double cell_ = 1;  // finest level
+  int levels_used_ = 0;
+  std::vector<int> level_faces_[kLevels];  // faces filed on each level (once per add)
+  std::unordered_map<int64_t, std::vector<int>> cells_;
+  std::vector<std::array<V3, 2>> boxes_;  // as of the last add
+  std::vector<int> level_;                // where each face is filed; -1: not filed
+  std::vector<int> seen_;
+  int stamp_ = 0;
+};
+
+}  // namespace mr::surface_union
