@@ -117,6 +117,8 @@ private:
     new_pos_.push_back(q);
   }
   bool stays_clear();
+  /// Moves x (whose live faces are fx) to `at` if that stays clear of the faces nearby.
+  bool move_vertex(int x, const std::vector<int>& fx, const V3& at);
   void live_faces(int v, std::vector<int>& out) const {
     out.clear();
     for (int f : vf_[v])
@@ -494,10 +496,14 @@ bool Collapser::try_relocate(int x) {
     after = std::min(after, a);
   }
   if (!(after > before)) return false;
+  return move_vertex(x, fx, moved);
+}
+
+bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
   start_move();
-  for (int f : fx) propose(f, x, x, moved);
+  for (int f : fx) propose(f, x, x, at);
   if (!stays_clear()) return false;
-  r_.vertices[x] = moved;
+  r_.vertices[x] = at;
   for (int f : fx) {
     refile(f);
     for (int y : r_.faces[f]) changed_[y] = 1;
@@ -530,15 +536,7 @@ bool Collapser::compensate(int x, double dv6) {
     if (!moved_face(f, x, moved, q)) return false;
     if (face_min_angle(q[0], q[1], q[2]) < std::min(min_angle(f), threshold_)) return false;
   }
-  start_move();
-  for (int f : fx) propose(f, x, x, moved);
-  if (!stays_clear()) return false;
-  r_.vertices[x] = moved;
-  for (int f : fx) {
-    refile(f);
-    for (int y : r_.faces[f]) changed_[y] = 1;
-  }
-  return true;
+  return move_vertex(x, fx, moved);
 }
 
 int Collapser::run(double threshold) {
