@@ -31,7 +31,7 @@ Placement at_arc(const LinePath& path, const std::vector<double>& cumulative, do
 
 }  // namespace
 
-int slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double worse_than_rad) {
+std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double worse_than_rad) {
   const size_t nv = out.points.size();
   const FaceRings rings(nv, out.faces);
   const std::vector<int>&begin = rings.begin, &ring = rings.item;
@@ -44,7 +44,7 @@ int slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double wors
     }
     return worst;
   };
-  int moves = 0;
+  std::vector<int> moved;
   std::vector<Point3> old_normal;
   for (LinePath& path : paths) {
     if (path.polyline.size() < 2) continue;
@@ -83,10 +83,10 @@ int slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double wors
       out.points[v] = best_place.point;
       out.host[v] = path.segment_host[best_place.segment];
       path.arc[i] = best_arc;
-      ++moves;
+      moved.push_back(v);
     }
   }
-  return moves;
+  return moved;
 }
 
 }  // namespace mr::remesh

@@ -25,7 +25,7 @@ struct LinePath {
 
 /// Moves line points along their lines where that raises the smallest angle of their faces
 /// below `worse_than_rad` (the rest are left alone: the lines keep their even spacing);
-/// `paths` follow the moves. Returns how many points moved.
-int slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double worse_than_rad);
+/// `paths` follow the moves. Returns the points that moved, in the order they moved.
+std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double worse_than_rad);
 
 }  // namespace mr::remesh

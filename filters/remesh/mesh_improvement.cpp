@@ -163,7 +163,7 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vecto
   return moves;
 }
 
-// Within two edges of `moved` (all points when it is empty), and `moved` themselves held.
+// Points within two edges of `moved` (all points when it is empty).
 std::vector<char> region_around(const OutputMesh& out, const std::vector<int>& moved) {
   std::vector<char> region(out.points.size(), moved.empty() ? 1 : 0);
   for (int v : moved) region[v] = 1;
@@ -200,9 +200,11 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
   // Line points slide last, where swaps and smoothing left bad faces around them; the free
   // points around a moved one are smoothed again.
   for (int it = 0; it < iterations; ++it) {
-    const int slides = slide_line_points(out, line_paths, kSlideBelow);
-    if (slides == 0) break;
-    r.moves += slides + smooth_pass(out, locator, movable);
+    const std::vector<int> slid = slide_line_points(out, line_paths, kSlideBelow);
+    if (slid.empty()) break;
+    std::vector<char> near_slid = region_around(out, slid);
+    for (size_t v = 0; v < near_slid.size(); ++v) near_slid[v] = near_slid[v] && movable[v];
+    r.moves += int(slid.size()) + smooth_pass(out, locator, near_slid);
   }
   return r;
 }

@@ -137,9 +137,9 @@ FrontResult repair_locally(OutputMesh& out, const std::vector<FrontSide>& initia
                            double target, FrontResult r, Result& result) {
   std::vector<int> spots;
   int problems = trouble(out, patch, r, target, spots);
+  int bad = problems > 0 ? bad_edges(out) : 0;  // edges with two faces of one orientation or more
   for (int round = 0; round < kRepairRounds && problems > 0; ++round) {
     OutputMesh saved = out;
-    const int bad_before = bad_edges(out);
     const std::vector<FrontSide> hole =
         open_hole_around(out, patch, initial_front, r.open_sides, spots, kRepairRadius * target);
     const size_t kept = out.faces.size();
@@ -150,10 +150,12 @@ FrontResult repair_locally(OutputMesh& out, const std::vector<FrontSide>& initia
     const int after = trouble(out, patch, again, target, spots_after);
     // A hole front that got out over the mesh around it would make far more faces than it took.
     const bool leaked = again.faces > int(4 * (saved.faces.size() - kept)) + 100;
-    if (after >= problems || leaked || bad_edges(out) > bad_before) {
+    const int bad_after = after < problems && !leaked ? bad_edges(out) : bad + 1;
+    if (after >= problems || leaked || bad_after > bad) {
       out = std::move(saved);
       break;
     }
+    bad = bad_after;
     result.local_repairs++;
     r.unmeshed_sides = again.unmeshed_sides;
     r.open_sides = again.open_sides;
