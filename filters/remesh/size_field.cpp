@@ -1,5 +1,7 @@
 #include "remesh/size_field.h"
 
+#include "common/uniform_grid.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -31,24 +33,46 @@ SizeField::SizeField(const Surface& surface, const SizeParams& params)
         vertex_size_[b] = std::min(vertex_size_[b], hh);
       }
   }
+  // Sources: h <= size at the source + slope x distance. Sizes start at or below the target,
+  // so a source reaches no farther than (target - its size) / slope; a grid of the vertices
+  // limits each source to those (a lines layer as source has thousands of segments).
   const double slope = std::max(params.gradation - 1.0, 0.0);
-  for (size_t i = 0; i < params.source_points.size() && i < params.source_sizes.size(); ++i) {
-    for (size_t v = 0; v < s.points.size(); ++v) {
-      const double h = params.source_sizes[i] + slope * (s.points[v] - params.source_points[i]).Norm();
-      if (h > 0) vertex_size_[v] = std::min(vertex_size_[v], h);
+  const double target = params.target_length;
+  auto reach_of = [&](double h) { return slope > 0 ? std::max(target - h, 0.0) / slope : -1.0; };
+  double widest = 0;
+  for (double h : params.source_sizes) widest = std::max(widest, reach_of(h));
+  UniformGrid vertices(std::max(target, widest / 4));
+  for (size_t v = 0; v < s.points.size(); ++v) vertices.insert(int(v), s.points[v]);
+  // Calls f(v) for the vertices within `reach` of the box centred at c with half-size `half`
+  // (every vertex when slope is 0: then a source lowers the size everywhere).
+  auto visit_within = [&](const Point3& c, double half, double reach, auto&& f) {
+    if (reach < 0) {
+      for (size_t v = 0; v < s.points.size(); ++v) f(int(v));
+    } else {
+      vertices.visit(c, half + reach, f);
     }
+  };
+  for (size_t i = 0; i < params.source_points.size() && i < params.source_sizes.size(); ++i) {
+    const Point3& at = params.source_points[i];
+    const double hs = params.source_sizes[i];
+    visit_within(at, 0.0, reach_of(hs), [&](int v) {
+      const double h = hs + slope * (s.points[v] - at).Norm();
+      if (h > 0) vertex_size_[v] = std::min(vertex_size_[v], h);
+    });
   }
   for (const auto& seg : params.source_segments) {
     const Point3 &a = params.source_points[seg[0]], &b = params.source_points[seg[1]];
     const double ha = params.source_sizes[seg[0]], hb = params.source_sizes[seg[1]];
     const Point3 d = b - a;
     const double len2 = d.SquaredNorm();
-    for (size_t v = 0; v < s.points.size(); ++v) {
+    const Point3 mid = (a + b) * 0.5;
+    const double half = std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])}) * 0.5;
+    visit_within(mid, half, reach_of(std::min(ha, hb)), [&](int v) {
       // Closest point of the segment; its size interpolated between the ends, then graded.
       const double t = len2 > 0 ? std::clamp(((s.points[v] - a) * d) / len2, 0.0, 1.0) : 0.0;
       const double h = (1 - t) * ha + t * hb + slope * (s.points[v] - (a + d * t)).Norm();
       if (h > 0) vertex_size_[v] = std::min(vertex_size_[v], h);
-    }
+    });
   }
   for (size_t v = 0; v < params.vertex_cap.size() && v < vertex_size_.size(); ++v)
     if (params.vertex_cap[v] > 0) vertex_size_[v] = std::min(vertex_size_[v], params.vertex_cap[v]);

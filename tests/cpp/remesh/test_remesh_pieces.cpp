@@ -125,6 +125,34 @@ TEST(RemeshPieces, SizeFieldLineSourceInterpolatesAlongTheSegmentAndGrades) {
   EXPECT_EQ(below_target, int(s.points.size()));
 }
 
+TEST(RemeshPieces, SizeSourcesReachEveryVertexTheirLawLowers) {
+  // Sources only search the vertices within (target - size) / slope of them: on a fine grid
+  // with a small target most vertices are beyond, and every vertex must still get exactly
+  // min(target, the sources' graded laws) (the laws already respect the gradation).
+  TriMesh m;
+  test::grid(m, 40);
+  const Surface s = Surface::from_mesh(m, {});
+  SizeParams sp;
+  sp.target_length = 0.05;
+  sp.gradation = 1.3;
+  sp.source_points = {Point3(0.5, 0.5, 0), Point3(0.1, 0.9, 0), Point3(0.9, 0.9, 0)};
+  sp.source_sizes = {0.005, 0.01, 0.03};
+  sp.source_segments = {{1, 2}};
+  const SizeField field(s, sp);
+  int lowered = 0;
+  for (size_t v = 0; v < s.points.size(); ++v) {
+    const Point3& p = s.points[v];
+    double law = std::min(sp.target_length, 0.005 + 0.3 * (p - sp.source_points[0]).Norm());
+    const Point3 a = sp.source_points[1], d = sp.source_points[2] - a;
+    const double t = std::clamp(((p - a) * d) / d.SquaredNorm(), 0.0, 1.0);
+    law = std::min(law, (1 - t) * 0.01 + t * 0.03 + 0.3 * (p - (a + d * t)).Norm());
+    EXPECT_NEAR(field.at_vertex(int(v)), law, 1e-12) << v;
+    lowered += law < sp.target_length ? 1 : 0;
+  }
+  EXPECT_GT(lowered, 20);
+  EXPECT_LT(lowered, int(s.points.size()) / 2);  // most vertices are out of reach
+}
+
 TEST(RemeshPieces, FrontPriorityTakesSmallestFirstAndPenalisesFailures) {
   EXPECT_LT(front_priority(1.0, 0), front_priority(2.0, 0));
   EXPECT_LT(front_priority(2.0, 0), front_priority(1.0, 1));
