@@ -171,6 +171,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"swaps", QVariant(r.swaps)},
       {"smoothed", QVariant(r.smoothed)},
       {"snapped", QVariant(r.snapped)},
+      {"surface_swaps", QVariant(r.surface_swaps)},
       {"target_length", QVariant(p.target_length)},
       {"time_ms", QVariant(ms)},
   };

@@ -1,0 +1,92 @@
+// Swaps towards the surface: a face pair whose diagonal cuts across a crease of the input turns
+// to the diagonal along it; flat pairs and feature edges stay.
+#include "remesh/deviation_swaps.h"
+#include "remesh/triangle_geometry.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace mr;
+using namespace mr::remesh;
+
+namespace {
+
+constexpr double kRoof = 0.3;  // ridge height of the input roof
+
+// A roof along x over [0,1] x [-1,1]: its ridge y = 0 at height kRoof; faces 0,1 at y < 0.
+struct Roof {
+  Surface surface;
+  SurfaceLocator locator;
+  SizeField size;
+  Roof()
+      : surface(Surface::from_arrays({Point3(0, -1, 0), Point3(1, -1, 0), Point3(0, 0, kRoof), Point3(1, 0, kRoof),
+                                      Point3(0, 1, 0), Point3(1, 1, 0)},
+                                     {{0, 1, 3}, {0, 3, 2}, {2, 3, 5}, {2, 5, 4}}, {})),
+        locator(surface, 0.25), size(surface, std::vector<double>(6, 1.0)) {}
+};
+
+// Two ridge points A, B and two points C, D on the slopes, joined by the diagonal C-D across the
+// ridge (faces C,D,A and D,C,B).
+OutputMesh across_the_ridge() {
+  OutputMesh out;
+  const int a = out.add_point(Point3(0.2, 0, kRoof), 1, PointKind::Free);
+  const int b = out.add_point(Point3(0.8, 0, kRoof), 1, PointKind::Free);
+  const int c = out.add_point(Point3(0.5, -0.8, 0.2 * kRoof), 0, PointKind::Free);
+  const int d = out.add_point(Point3(0.5, 0.8, 0.2 * kRoof), 3, PointKind::Free);
+  out.faces = {{c, d, a}, {d, c, b}};
+  out.face_patch = {0, 0};
+  return out;
+}
+
+bool has_edge(const OutputMesh& out, int a, int b) {
+  for (const auto& f : out.faces)
+    for (int z = 0; z < 3; ++z)
+      if (std::minmax(f[z], f[(z + 1) % 3]) == std::minmax(a, b)) return true;
+  return false;
+}
+
+double centroid_distance(const OutputMesh& out, const SurfaceLocator& locator) {
+  double worst = 0;
+  for (const auto& f : out.faces) {
+    const Point3 g = (out.points[f[0]] + out.points[f[1]] + out.points[f[2]]) / 3.0;
+    worst = std::max(worst, locator.locate(g, -1, Point3(0, 0, 0), -1, 1.0).distance);
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST(DeviationSwaps, DiagonalAcrossACreaseTurnsAlongIt) {
+  const Roof roof;
+  OutputMesh out = across_the_ridge();
+  const double before = centroid_distance(out, roof.locator);
+  ASSERT_GT(before, 0.1);  // the pair cuts under the ridge
+
+  EXPECT_EQ(swap_towards_surface(out, {}, roof.locator, roof.size), 1);
+  EXPECT_TRUE(has_edge(out, 0, 1));
+  EXPECT_FALSE(has_edge(out, 2, 3));
+  // Each new face lies on one slope of the roof.
+  EXPECT_LT(centroid_distance(out, roof.locator), 1e-9);
+  // Orientation is kept: both faces face up like the roof.
+  for (const auto& f : out.faces) EXPECT_GT(unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]])[2], 0.5);
+  // And the smallest angle did not get worse than min(30 degrees, the old one).
+  for (const auto& f : out.faces) EXPECT_GT(min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]) * 180 / M_PI, 30.0);
+}
+
+TEST(DeviationSwaps, FeatureEdgesStay) {
+  const Roof roof;
+  OutputMesh out = across_the_ridge();
+  EXPECT_EQ(swap_towards_surface(out, {{{3, 2}}}, roof.locator, roof.size), 0);
+  EXPECT_TRUE(has_edge(out, 2, 3));
+}
+
+TEST(DeviationSwaps, PairsNearTheSurfaceStay) {
+  const Roof roof;
+  OutputMesh out = across_the_ridge();
+  // Raise the slope points next to the ridge: the diagonal is then within 0.1 x size of the roof.
+  out.points[2] = Point3(0.5, -0.1, 0.9 * kRoof);
+  out.points[3] = Point3(0.5, 0.1, 0.9 * kRoof);
+  EXPECT_EQ(swap_towards_surface(out, {}, roof.locator, roof.size), 0);
+}
