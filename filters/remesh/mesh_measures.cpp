@@ -8,6 +8,26 @@
 
 namespace mr::remesh {
 
+namespace {
+
+// Closest face to p: searched within half a size first, then in boxes four times larger up to
+// `reach`. Each search is exact when it finds a face inside its box, and the output lies mostly
+// within a fraction of a size of the input; one search over `reach` (a box of hundreds of faces,
+// or a walk over every long thin face of a CAD export) made measuring most of the filter's time.
+Projection project(const SurfaceLocator& locator, const Point3& p, int start, double size, double reach) {
+  for (double r = 0.5 * size; r < reach; r *= 4) {
+    const Projection pr = locator.locate_within(p, -1, Point3(0, 0, 0), start, r);
+    if (pr.face >= 0) return pr;
+  }
+  return locator.locate(p, -1, Point3(0, 0, 0), start, reach);
+}
+
+double distance_to(const SurfaceLocator& locator, const Point3& p, int start, double size, double reach) {
+  return project(locator, p, start, size, reach).distance;
+}
+
+}  // namespace
+
 Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, const SizeField& size) {
   Measures m;
   constexpr double kRad = 180.0 / 3.14159265358979323846;
@@ -27,7 +47,7 @@ Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, con
   double haus = 0;
   for (const auto& e : edges) {
     const Point3 mid = (out.points[e.first] + out.points[e.second]) * 0.5;
-    const Projection pr = input_locator.locate(mid, -1, Point3(0, 0, 0), out.host[e.first], reach);
+    const Projection pr = project(input_locator, mid, out.host[e.first], size.max_size(), reach);
     const double h = pr.face >= 0 ? size.at(pr.face, pr.bary) : size.max_size();
     const double len = (out.points[e.first] - out.points[e.second]).Norm();
     if (len >= 0.7 * h && len <= 1.4 * h) in_range++;
@@ -37,13 +57,13 @@ Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, con
   for (size_t f = 0; f < out.faces.size(); ++f) {
     const auto& t = out.faces[f];
     const Point3 c = (out.points[t[0]] + out.points[t[1]] + out.points[t[2]]) / 3.0;
-    haus = std::max(haus, input_locator.locate(c, -1, Point3(0, 0, 0), out.host[t[0]], reach).distance);
+    haus = std::max(haus, distance_to(input_locator, c, out.host[t[0]], size.max_size(), reach));
   }
   // Input vertices to the output surface.
   const Surface output = Surface::from_arrays(out.points, out.faces, {});
   const SurfaceLocator out_locator(output, size.max_size());
   const Surface& in = input_locator.surface();
-  for (const auto& p : in.points) haus = std::max(haus, out_locator.locate(p, -1, Point3(0, 0, 0), -1, reach).distance);
+  for (const auto& p : in.points) haus = std::max(haus, distance_to(out_locator, p, -1, size.max_size(), reach));
   m.hausdorff = haus;
   return m;
 }

@@ -127,14 +127,29 @@ bool SurfaceLocator::accept(int f, int group, const Point3& normal) const {
 void SurfaceLocator::faces_near(const Point3& p, double radius, std::vector<int>& out) const {
   out.clear();
   if (++stamp_value_ == std::numeric_limits<int>::max()) { std::fill(stamp_.begin(), stamp_.end(), 0); stamp_value_ = 1; }
-  auto lo = cell_of(p - Point3(radius, radius, radius)), hi = cell_of(p + Point3(radius, radius, radius));
+  const Point3 box_lo = p - Point3(radius, radius, radius), box_hi = p + Point3(radius, radius, radius);
+  // A cell holds hundreds of faces when the input is much finer than the elements, and most
+  // queries (host of a side, normals at a line point) have a tiny radius: faces whose bounding box
+  // misses the query box are left out before the sort, as no point of them is within reach.
+  auto box_misses = [&](int f) {
+    const auto& t = surface_.faces[f];
+    const Point3 &a = surface_.points[t[0]], &b = surface_.points[t[1]], &c = surface_.points[t[2]];
+    for (int axis = 0; axis < 3; ++axis)
+      if (std::max({a[axis], b[axis], c[axis]}) < box_lo[axis] || std::min({a[axis], b[axis], c[axis]}) > box_hi[axis])
+        return true;
+    return false;
+  };
+  auto lo = cell_of(box_lo), hi = cell_of(box_hi);
   for (long i = lo[0]; i <= hi[0]; ++i)
     for (long j = lo[1]; j <= hi[1]; ++j)
       for (long k = lo[2]; k <= hi[2]; ++k) {
         auto it = grid_.find(key(i, j, k));
         if (it == grid_.end()) continue;
         for (int f : it->second)
-          if (stamp_[f] != stamp_value_) { stamp_[f] = stamp_value_; out.push_back(f); }
+          if (stamp_[f] != stamp_value_) {
+            stamp_[f] = stamp_value_;
+            if (!box_misses(f)) out.push_back(f);
+          }
       }
   std::sort(out.begin(), out.end());
 }

@@ -56,7 +56,8 @@ public:
   Projection locate_within(const Point3& p, int group, const Point3& normal, int start, double radius,
                            SearchStep* step = nullptr) const;
 
-  /// Faces whose grid cells lie within `radius` of p (may repeat none; order is deterministic).
+  /// Faces whose bounding boxes come within `radius` of p on every axis (a superset of the faces
+  /// within `radius`), ascending, none repeated.
   void faces_near(const Point3& p, double radius, std::vector<int>& out) const;
 
   const Surface& surface() const { return surface_; }
