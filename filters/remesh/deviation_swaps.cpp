@@ -27,7 +27,7 @@ struct PairProbe {
 
   // Distance from the input at p, and the input's normal there (zero if no host face is near).
   double distance(const Point3& p, Point3* normal = nullptr) const {
-    const Projection pr = locator.locate_within(p, patch, Point3(0, 0, 0), start, radius);
+    const Projection pr = locator.locate_growing(p, patch, start, 0.125 * radius, radius);
     if (pr.face < 0) return radius;
     if (normal) *normal = locator.surface().face_normal[pr.face];
     return pr.distance;

@@ -10,16 +10,12 @@ namespace mr::remesh {
 
 namespace {
 
-// Closest face to p: searched within half a size first, then in boxes four times larger up to
-// `reach`. Each search is exact when it finds a face inside its box, and the output lies mostly
-// within a fraction of a size of the input; one search over `reach` (a box of hundreds of faces,
-// or a walk over every long thin face of a CAD export) made measuring most of the filter's time.
+// Closest face to p, from half a size on (the output lies mostly within a fraction of a size of
+// the input; one search over `reach`, a box of hundreds of faces or a walk over every long thin
+// face of a CAD export, made measuring most of the filter's time), by brute force past `reach`.
 Projection project(const SurfaceLocator& locator, const Point3& p, int start, double size, double reach) {
-  for (double r = 0.5 * size; r < reach; r *= 4) {
-    const Projection pr = locator.locate_within(p, -1, Point3(0, 0, 0), start, r);
-    if (pr.face >= 0) return pr;
-  }
-  return locator.locate(p, -1, Point3(0, 0, 0), start, reach);
+  const Projection pr = locator.locate_growing(p, -1, start, 0.5 * size, reach);
+  return pr.face >= 0 ? pr : locator.locate(p, -1, Point3(0, 0, 0), start, reach);
 }
 
 double distance_to(const SurfaceLocator& locator, const Point3& p, int start, double size, double reach) {

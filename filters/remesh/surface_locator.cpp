@@ -186,6 +186,15 @@ Projection SurfaceLocator::locate(const Point3& p, int group, const Point3& norm
   return best;
 }
 
+Projection SurfaceLocator::locate_growing(const Point3& p, int group, int start, double first_radius,
+                                          double reach) const {
+  for (double r = first_radius; r > 0 && r < reach; r *= 4) {
+    const Projection pr = locate_within(p, group, Point3(0, 0, 0), start, r);
+    if (pr.face >= 0) return pr;
+  }
+  return locate_within(p, group, Point3(0, 0, 0), start, reach);
+}
+
 Projection SurfaceLocator::locate_within(const Point3& p, int group, const Point3& normal, int start, double radius,
                                          SearchStep* step) const {
   const Surface& s = surface_;

@@ -56,6 +56,11 @@ public:
   Projection locate_within(const Point3& p, int group, const Point3& normal, int start, double radius,
                            SearchStep* step = nullptr) const;
 
+  /// Like locate_within with radius `reach`, searched from `first_radius` on in radii 4x larger
+  /// while nothing is found. Each step is exact when it finds a face within its radius, and small
+  /// radii keep walks and grid boxes short: for points known to lie near the surface this is much
+  /// cheaper than one search over `reach`.
+  Projection locate_growing(const Point3& p, int group, int start, double first_radius, double reach) const;
   /// Faces whose bounding boxes come within `radius` of p on every axis (a superset of the faces
   /// within `radius`), ascending, none repeated.
   void faces_near(const Point3& p, double radius, std::vector<int>& out) const;
