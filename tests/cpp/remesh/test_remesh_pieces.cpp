@@ -72,6 +72,29 @@ TEST(RemeshPieces, HostFaceSearchWalkGridAndBruteForce) {
   EXPECT_GT(pr.distance, 1.5);
 }
 
+TEST(RemeshPieces, GrowingSearchFindsTheClosestFaceAtEveryDistance) {
+  TriMesh m;
+  test::sphere(m, 3);
+  const Surface s = Surface::from_mesh(m, {});
+  const SurfaceLocator loc(s, 0.1);
+  // Points at 0.001 to 0.3 off the unit sphere, inside and out: the search from 0.01 on must
+  // give the same distance as brute force, and nothing beyond its reach.
+  for (int k = 0; k < 60; ++k) {
+    const double off = (k % 2 ? 1 : -1) * 0.001 * std::pow(1.1, k);
+    const Point3 dir = Point3(std::cos(k * 0.7), std::sin(k * 1.3), std::cos(k * 2.1)).Normalize();
+    const Point3 p = dir * (1 + off);
+    double best = 1e9;
+    for (const auto& t : s.faces) {
+      std::array<double, 3> bary;
+      best = std::min(best, (closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary) - p).Norm());
+    }
+    const Projection pr = loc.locate_growing(p, -1, -1, 0.01, 0.5);
+    ASSERT_GE(pr.face, 0);
+    EXPECT_NEAR(pr.distance, best, 1e-12);
+  }
+  EXPECT_LT(loc.locate_growing(Point3(3, 0, 0), -1, -1, 0.01, 0.5).face, 0);
+}
+
 TEST(RemeshPieces, SizeFieldUniformCurvatureAndGradation) {
   TriMesh m;
   test::sphere(m, 3);
