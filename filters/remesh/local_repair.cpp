@@ -79,6 +79,20 @@ std::vector<int> oversized_face_points(const OutputMesh& out, int patch, double 
   return points;
 }
 
+std::vector<int> stray_face_points(const OutputMesh& out, int patch, const SurfaceLocator& locator, double max_distance) {
+  std::vector<int> points;
+  for (size_t f = 0; f < out.faces.size(); ++f) {
+    if (out.face_patch[f] != patch) continue;
+    const auto& t = out.faces[f];
+    const Point3 centroid = (out.points[t[0]] + out.points[t[1]] + out.points[t[2]]) / 3.0;
+    if (locator.locate_growing(centroid, patch, out.host[t[0]], 0.25 * max_distance, max_distance).face < 0)
+      points.insert(points.end(), t.begin(), t.end());
+  }
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  return points;
+}
+
 std::vector<int> faces_around(const OutputMesh& out, int patch, const std::vector<FrontSide>& front) {
   std::unordered_set<int> on_front;
   for (const auto& s : front) on_front.insert({s[0], s[1]});

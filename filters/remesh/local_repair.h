@@ -19,6 +19,10 @@ std::vector<FrontSide> open_hole_around(OutputMesh& out, int patch, const std::v
                                         const std::vector<FrontSide>& open_sides, const std::vector<int>& spots,
                                         double radius);
 
+/// Points of the faces of `patch` whose centroid lies farther than `max_distance` from the input
+/// faces of the patch: a front that bridged a groove or cut across a tip; ascending.
+std::vector<int> stray_face_points(const OutputMesh& out, int patch, const SurfaceLocator& locator, double max_distance);
+
 /// Points of the faces of `patch` with a side longer than `max_length`, or longer than
 /// `needle_length` with an angle under `needle_angle` (radians): what a stuck front closes, a fan
 /// or an ear across a loop of far-apart points; ascending.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <queue>
 
 namespace mr::remesh {
@@ -74,9 +75,20 @@ SizeField::SizeField(const Surface& surface, const SizeParams& params)
       if (h > 0) vertex_size_[v] = std::min(vertex_size_[v], h);
     });
   }
-  for (size_t v = 0; v < params.vertex_cap.size() && v < vertex_size_.size(); ++v)
-    if (params.vertex_cap[v] > 0) vertex_size_[v] = std::min(vertex_size_[v], params.vertex_cap[v]);
-  limit_gradation(params.gradation);
+  if (params.cap_gradation <= params.gradation) {
+    for (size_t v = 0; v < params.vertex_cap.size() && v < vertex_size_.size(); ++v)
+      if (params.vertex_cap[v] > 0) vertex_size_[v] = std::min(vertex_size_[v], params.vertex_cap[v]);
+    limit_gradation(params.gradation);
+  } else {
+    // The caps grade on their own, faster, and the field is the smaller of the two.
+    limit_gradation(params.gradation);
+    std::vector<double> capped(vertex_size_.size(), std::numeric_limits<double>::max());
+    for (size_t v = 0; v < params.vertex_cap.size() && v < vertex_size_.size(); ++v)
+      if (params.vertex_cap[v] > 0) capped[v] = params.vertex_cap[v];
+    std::swap(capped, vertex_size_);
+    limit_gradation(params.cap_gradation);
+    for (size_t v = 0; v < vertex_size_.size(); ++v) vertex_size_[v] = std::min(vertex_size_[v], capped[v]);
+  }
   update_range();
 }
 

@@ -20,8 +20,11 @@ struct SizeParams {
   std::vector<double> source_sizes;
   /// Line sources: segments between two source points, the size interpolated along them.
   std::vector<std::array<int, 2>> source_segments;
-  /// Optional per-vertex upper bounds (e.g. small features), applied before the gradation.
+  /// Optional per-vertex upper bounds (e.g. small features).
   std::vector<double> vertex_cap;
+  /// The caps spread with this gradation when it is larger than `gradation` (then they refine
+  /// only close around a small feature), else with `gradation`, like the rest of the field.
+  double cap_gradation = 1.0;
 };
 
 class SizeField {

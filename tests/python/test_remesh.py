@@ -62,9 +62,10 @@ SHORTFALLS = {
     # worst angle 6.63 vs 9.65: an input face whose three vertices are corners and whose three edges
     # are ridges (an island patch) is an output face as it stands, and its smallest angle is 6.63
     "organic/stanford-bunny.obj": {"worst_angle": 6.6},
-    # 85.7% of the edges in range: 1135 corners, about half within 0.7 x target of another (short
-    # creases between the junctions of the scan's 30-degree ridge network); the edges around them are short
-    "organic/armadillo.off": {"edges_in_range": 0.85},
+    # 89.2% of the edges in range (MeshLab 87.5%): 1135 corners, about half within 0.7 x target of
+    # another (short creases between the junctions of the scan's 30-degree ridge network); the
+    # edges among and around them are short
+    "organic/armadillo.off": {"edges_in_range": 0.885},
 }
 
 

@@ -86,3 +86,22 @@ TEST(RemeshLocalRepair, NoSpotRemovesNothingAndOversizedFacesAreFound) {
   EXPECT_EQ(spots, (std::vector<int>{std::min({a, b, c}), a + b + c - std::min({a, b, c}) - std::max({a, b, c}), std::max({a, b, c})}));
   EXPECT_TRUE(oversized_face_points(out, 1, 0.2).empty());  // another patch
 }
+
+TEST(RemeshLocalRepair, StrayFacesAreThoseOffTheInput) {
+  const test::UnitSquare sq(0.1);
+  OutputMesh out;
+  mesh_square(out, sq);
+  // Every point lies on the square: no face strays.
+  EXPECT_TRUE(stray_face_points(out, 0, sq.locator, 0.05).empty());
+  // Lift one free point 0.3 off the plane: the centroids of its faces are 0.1 off, and only the
+  // points of those faces are returned.
+  const int v = nearest_point(out, Point3(0.5, 0.5, 0));
+  ASSERT_EQ(out.kind[v], PointKind::Free);
+  out.points[v][2] = 0.3;
+  const std::vector<int> stray = stray_face_points(out, 0, sq.locator, 0.05);
+  EXPECT_TRUE(std::binary_search(stray.begin(), stray.end(), v));
+  int ring = 0;
+  for (const auto& f : out.faces) ring += std::count(f.begin(), f.end(), v);
+  EXPECT_EQ(int(stray.size()), ring + 1);  // v and its ring of neighbours (a closed fan)
+  EXPECT_TRUE(stray_face_points(out, 0, sq.locator, 0.2).empty());
+}
