@@ -15,15 +15,8 @@ namespace {
 // mesh; refusing to grow it keeps the pairwise checks cheap.
 constexpr size_t kMaxCluster = 16;
 
-/// True if a and b share an edge (edges are sorted by (v0, v1)).
-bool adjacent(const SoupEdges& edges, int a, int b) {
-  if (a > b) std::swap(a, b);
-  auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, b),
-                             [](const SoupEdge& e, const std::pair<int, int>& k) {
-                               return e.v0 < k.first || (e.v0 == k.first && e.v1 < k.second);
-                             });
-  return it != edges.end() && it->v0 == a && it->v1 == b;
-}
+/// True if a and b share an edge.
+bool adjacent(const EdgeTable& edges, int a, int b) { return edges.find(a, b) >= 0; }
 
 /// Largest distance from samples of one segment to the other, both ways:
 /// the discrete Hausdorff distance the paper uses to verify a pairing.
@@ -41,7 +34,7 @@ double segment_hausdorff(const Point3& a, const Point3& b, const Point3& c, cons
 /// keeping every cluster within `tol` in diameter and free of mesh edges.
 class Clusters {
 public:
-  Clusters(const Soup& s, const SoupEdges& nb, double tol)
+  Clusters(const Soup& s, const EdgeTable& nb, double tol)
       : s_(s), nb_(nb), tol_(tol), id_(s.pos.size()), members_(s.pos.size()) {
     for (size_t v = 0; v < id_.size(); ++v) { id_[v] = int(v); members_[v] = {int(v)}; }
   }
@@ -82,7 +75,7 @@ public:
 
 private:
   const Soup& s_;
-  const SoupEdges& nb_;
+  const EdgeTable& nb_;
   double tol_;
   std::vector<int> id_;
   std::vector<std::vector<int>> members_;
@@ -100,14 +93,14 @@ struct Split {
 
 /// Step 2: splits border edges at border vertices of other edges that lie within
 /// `tol` of their interior. Returns the number of splits.
-int split_t_junctions(Soup& s, const SoupEdges& edges, const std::vector<int>& border,
+int split_t_junctions(Soup& s, const EdgeTable& edges, const std::vector<int>& border,
                       const std::vector<char>& is_border_vertex, Clusters& clusters, double tol) {
   double mean_len = 0;
-  for (int e : border) mean_len += vcg::Distance(s.pos[edges[e].v0], s.pos[edges[e].v1]);
+  for (int e : border) mean_len += vcg::Distance(s.pos[edges.v0(e)], s.pos[edges.v1(e)]);
   mean_len /= std::max<size_t>(border.size(), 1);
   UniformGrid grid(std::max(tol, mean_len));
   for (size_t i = 0; i < border.size(); ++i) {
-    grid.insert_segment(int(i), s.pos[edges[border[i]].v0], s.pos[edges[border[i]].v1], tol);
+    grid.insert_segment(int(i), s.pos[edges.v0(border[i])], s.pos[edges.v1(border[i])], tol);
   }
 
   std::vector<Split> splits;
@@ -117,9 +110,9 @@ int split_t_junctions(Soup& s, const SoupEdges& edges, const std::vector<int>& b
     int best = -1;
     double best_d = tol, best_t = 0;
     grid.visit(p, 0, [&](int i) {
-      const SoupEdge& e = edges[border[i]];
+      const auto e = edges.ends(border[i]);
       if (e.v0 == v || e.v1 == v) return;
-      const auto& face = s.tri[e.sides[0][0]];
+      const auto& face = s.tri[edges.side(border[i], 0).face];
       if (face[0] == v || face[1] == v || face[2] == v) return;
       if (clusters.id(v) == clusters.id(e.v0) || clusters.id(v) == clusters.id(e.v1)) return;
       const Point3 &a = s.pos[e.v0], &b = s.pos[e.v1];
@@ -129,8 +122,8 @@ int split_t_junctions(Soup& s, const SoupEdges& edges, const std::vector<int>& b
       const double d = vcg::Distance(p, a + (b - a) * t);
       if (d < best_d || (d == best_d && best >= 0 && i < best)) { best = i; best_d = d; best_t = t; }
     });
-    if (best >= 0 && clusters.can_join(-1, s.pos[edges[border[best]].v0] * (1 - best_t) +
-                                                s.pos[edges[border[best]].v1] * best_t, v))
+    if (best >= 0 && clusters.can_join(-1, s.pos[edges.v0(border[best])] * (1 - best_t) +
+                                                s.pos[edges.v1(border[best])] * best_t, v))
       splits.push_back({best, best_t, v});
   }
   std::sort(splits.begin(), splits.end(), [](const Split& x, const Split& y) {
@@ -139,13 +132,13 @@ int split_t_junctions(Soup& s, const SoupEdges& edges, const std::vector<int>& b
 
   // Which face currently holds each border edge (faces change as they split).
   std::map<uint64_t, int> holder;
-  for (int e : border) holder[edge_key(edges[e].v0, edges[e].v1)] = edges[e].sides[0][0];
+  for (int e : border) holder[edge_key(edges.v0(e), edges.v1(e))] = edges.side(e, 0).face;
 
   int count = 0;
   for (size_t i = 0; i < splits.size();) {
     size_t j = i;
     while (j < splits.size() && splits[j].edge == splits[i].edge) ++j;
-    const SoupEdge& e = edges[border[splits[i].edge]];
+    const auto e = edges.ends(border[splits[i].edge]);
     // One new vertex per T-vertex cluster along this edge.
     std::vector<std::pair<double, int>> cuts;
     for (size_t k = i; k < j; ++k) {
@@ -189,14 +182,14 @@ int split_t_junctions(Soup& s, const SoupEdges& edges, const std::vector<int>& b
 /// joins, would collapse a face or put three faces on one edge (a triple seam,
 /// a fold of the border onto itself) is dropped, and the classes rebuilt.
 template <class Pairs>
-std::vector<int> weld_without_defects(const Soup& s, const SoupEdges& edges, const Clusters& clusters,
+std::vector<int> weld_without_defects(const Soup& s, const EdgeTable& edges, const Clusters& clusters,
                                       Pairs pairs, std::vector<std::array<int, 2>>& seam_edges) {
   const int n = int(s.pos.size());
   std::vector<int> cls(n);
   for (int round = 0; round < 20; ++round) {
     UnionFind weld(n);
     for (const auto& p : pairs) {
-      const SoupEdge &e = edges[p.e], &g = edges[p.g];
+      const auto e = edges.ends(p.e), g = edges.ends(p.g);
       if (clusters.id(e.v0) == clusters.id(g.v0)) { weld.unite(e.v0, g.v0); weld.unite(e.v1, g.v1); }
       else { weld.unite(e.v0, g.v1); weld.unite(e.v1, g.v0); }
     }
@@ -223,14 +216,14 @@ std::vector<int> weld_without_defects(const Soup& s, const SoupEdges& edges, con
     }
     Pairs kept;
     for (const auto& p : pairs) {
-      const SoupEdge &e = edges[p.e], &g = edges[p.g];
+      const auto e = edges.ends(p.e), g = edges.ends(p.g);
       if (!(bad_vertex[e.v0] || bad_vertex[e.v1] || bad_vertex[g.v0] || bad_vertex[g.v1])) kept.push_back(p);
     }
     if (kept.size() == pairs.size()) break;
     pairs.swap(kept);
   }
   seam_edges.clear();
-  for (const auto& p : pairs) seam_edges.push_back({edges[p.e].v0, edges[p.e].v1});
+  for (const auto& p : pairs) seam_edges.push_back({edges.v0(p.e), edges.v1(p.e)});
   return cls;
 }
 
@@ -241,10 +234,10 @@ Pairing pair_borders(Soup& s, double vtol, double etol) {
   auto edges = soup_edges(s);
   std::vector<int> border;
   std::vector<char> is_border_vertex(s.pos.size(), 0);
-  for (size_t e = 0; e < edges.size(); ++e)
-    if (edges[e].sides.size() == 1) {
+  for (int e = 0; e < edges.edge_count(); ++e)
+    if (edges.valence(e) == 1) {
       border.push_back(int(e));
-      is_border_vertex[edges[e].v0] = is_border_vertex[edges[e].v1] = 1;
+      is_border_vertex[edges.v0(e)] = is_border_vertex[edges.v1(e)] = 1;
     }
   out.border_edges = int(border.size());
 
@@ -274,9 +267,9 @@ Pairing pair_borders(Soup& s, double vtol, double etol) {
   // the edges themselves are within the edge tolerance.
   edges = soup_edges(s);
   std::vector<std::pair<uint64_t, int>> keyed;
-  for (size_t e = 0; e < edges.size(); ++e) {
-    if (edges[e].sides.size() != 1) continue;
-    const int ca = clusters.id(edges[e].v0), cb = clusters.id(edges[e].v1);
+  for (int e = 0; e < edges.edge_count(); ++e) {
+    if (edges.valence(e) != 1) continue;
+    const int ca = clusters.id(edges.v0(e)), cb = clusters.id(edges.v1(e));
     if (ca != cb) keyed.push_back({edge_key(ca, cb), int(e)});
   }
   std::sort(keyed.begin(), keyed.end());
@@ -288,7 +281,7 @@ Pairing pair_borders(Soup& s, double vtol, double etol) {
     std::vector<std::tuple<double, int, int>> options;
     for (size_t x = i; x < j; ++x)
       for (size_t y = x + 1; y < j; ++y) {
-        const SoupEdge &e = edges[keyed[x].second], &g = edges[keyed[y].second];
+        const auto e = edges.ends(keyed[x].second), g = edges.ends(keyed[y].second);
         options.emplace_back(segment_hausdorff(s.pos[e.v0], s.pos[e.v1], s.pos[g.v0], s.pos[g.v1]),
                              keyed[x].second, keyed[y].second);
       }

@@ -19,6 +19,6 @@ struct OpenBorders {
 /// Boundary edges of the welded soup. A boundary edge whose midpoint lies
 /// within `search_radius` of another, roughly parallel boundary edge that
 /// shares no vertex with it is a gap left open; its width is that distance.
-OpenBorders find_open_borders(const Soup& soup, const SoupEdges& edges, double search_radius);
+OpenBorders find_open_borders(const Soup& soup, const EdgeTable& edges, double search_radius);
 
 }  // namespace mr::healing

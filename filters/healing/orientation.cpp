@@ -8,10 +8,6 @@ Orientation orient_consistently(Soup& s, bool outward) {
   Orientation out;
   const auto edges = soup_edges(s);
   const int nf = int(s.tri.size());
-  // For every face side: the edge it lies on.
-  std::vector<int> side_edge(3 * nf, -1);
-  for (size_t e = 0; e < edges.size(); ++e)
-    for (const auto& fs : edges[e].sides) side_edge[3 * fs[0] + fs[1]] = int(e);
 
   std::vector<int> flip(nf, -1);
   for (int seed = 0; seed < nf; ++seed) {
@@ -25,13 +21,13 @@ Orientation orient_consistently(Soup& s, bool outward) {
       const int f = queue.front();
       queue.pop();
       for (int z = 0; z < 3; ++z) {
-        const int e = side_edge[3 * f + z];
+        const int e = edges.edge_of(f, z);
         if (e < 0) continue;
-        if (edges[e].sides.size() != 2) { closed = false; continue; }
-        const auto other = edges[e].sides[0][0] == f && edges[e].sides[0][1] == z ? edges[e].sides[1]
-                                                                                     : edges[e].sides[0];
-        const int g = other[0];
-        const bool same_direction = s.tri[f][z] == s.tri[g][other[1]];
+        if (edges.valence(e) != 2) { closed = false; continue; }
+        const FaceSide other = edges.side(e, 0).face == f && edges.side(e, 0).side == z ? edges.side(e, 1)
+                                                                                         : edges.side(e, 0);
+        const int g = other.face;
+        const bool same_direction = s.tri[f][z] == s.tri[g][other.side];
         const int want = flip[f] ^ int(same_direction);
         if (flip[g] < 0) {
           flip[g] = want;

@@ -109,14 +109,14 @@ Result heal(std::vector<Point3> points, std::vector<std::array<int, 3>> faces, s
   r.faces_flipped = orientation.faces_flipped;
   r.orientation_conflicts = orientation.conflicts;
 
-  const SoupEdges edges = soup_edges(welded.soup);
+  const EdgeTable edges = soup_edges(welded.soup);
   const OpenBorders open = find_open_borders(welded.soup, edges, 10 * vtol);
   r.boundary_edges_after = open.edges;
   r.open_loops = open.loops;
   r.gaps_left = open.gaps;
   r.largest_gap = open.largest_gap;
   r.open_border = open.side_open;
-  for (const auto& e : edges) r.non_manifold_edges_after += e.sides.size() > 2;
+  for (int e = 0; e < edges.edge_count(); ++e) r.non_manifold_edges_after += edges.valence(e) > 2;
 
   Regions regions = group_patches(welded.soup, edges, seams, params.feature_angle_deg);
   r.feature = std::move(regions.feature);

@@ -6,7 +6,7 @@
 
 namespace mr::healing {
 
-Regions group_patches(const Soup& s, const SoupEdges& edges, const std::vector<std::array<int, 2>>& welded, double angle_deg) {
+Regions group_patches(const Soup& s, const EdgeTable& edges, const std::vector<std::array<int, 2>>& welded, double angle_deg) {
   Regions out;
   const int nf = int(s.tri.size());
   out.feature.assign(nf, {false, false, false});
@@ -23,13 +23,14 @@ Regions group_patches(const Soup& s, const SoupEdges& edges, const std::vector<s
   }
   const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
   UnionFind groups(nf);
-  for (const auto& e : edges) {
-    if (e.sides.size() != 2) continue;
-    const int f = e.sides[0][0], g = e.sides[1][0];
+  for (int e = 0; e < edges.edge_count(); ++e) {
+    if (edges.valence(e) != 2) continue;
+    const FaceSide a = edges.side(e, 0), b = edges.side(e, 1);
+    const int f = a.face, g = b.face;
     const bool seam = s.patch[f] != s.patch[g] ||
-                      std::binary_search(welded_keys.begin(), welded_keys.end(), key(e.v0, e.v1));
+                      std::binary_search(welded_keys.begin(), welded_keys.end(), key(edges.v0(e), edges.v1(e)));
     if (seam && normal[f] * normal[g] < cos_limit) {
-      out.feature[f][e.sides[0][1]] = out.feature[g][e.sides[1][1]] = true;
+      out.feature[f][a.side] = out.feature[g][b.side] = true;
       ++out.feature_edges;
     } else {
       groups.unite(f, g);

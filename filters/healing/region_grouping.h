@@ -20,7 +20,7 @@ struct Regions {
 /// listed in `welded` (vertex pairs of the soup). A seam whose face normals
 /// differ by more than `feature_angle_deg` is a feature line. Groups grow
 /// across every manifold edge that is not a feature line.
-Regions group_patches(const Soup& soup, const SoupEdges& edges, const std::vector<std::array<int, 2>>& welded,
+Regions group_patches(const Soup& soup, const EdgeTable& edges, const std::vector<std::array<int, 2>>& welded,
                       double feature_angle_deg);
 
 }  // namespace mr::healing
