@@ -47,3 +47,31 @@ TEST(EdgeTable, OppositeFaceIsSymmetric) {
       EXPECT_TRUE(back);
     }
 }
+
+TEST(EdgeTable, IndexedTrianglesGiveTheMeshTableAndFindEveryEdge) {
+  TriMesh m;
+  test::sphere(m, 2);
+  std::vector<std::array<int, 3>> tri;
+  for (const auto& f : m.face)
+    tri.push_back({int(vcg::tri::Index(m, f.cV(0))), int(vcg::tri::Index(m, f.cV(1))), int(vcg::tri::Index(m, f.cV(2)))});
+  const EdgeTable a(m), b(m.vert.size(), tri);
+  ASSERT_EQ(a.edge_count(), b.edge_count());
+  for (int e = 0; e < a.edge_count(); ++e) {
+    EXPECT_EQ(a.v0(e), b.v0(e));
+    EXPECT_EQ(a.v1(e), b.v1(e));
+    EXPECT_EQ(b.find(b.v1(e), b.v0(e)), e);  // either order
+  }
+  EXPECT_EQ(b.find(0, 0), -1);
+  int missing = 0;  // a pair of vertices with no edge between them
+  for (int v = 1; v < int(m.vert.size()) && missing == 0; ++v) missing = b.find(0, v) < 0 ? v : 0;
+  ASSERT_GT(missing, 0);
+}
+
+TEST(EdgeTable, DegenerateSidesOfIndexedTrianglesGetNoEdge) {
+  // A welded sliver (vertex 1 twice) beside a proper triangle.
+  const EdgeTable edges(4, {{0, 1, 1}, {0, 2, 1}, {1, 2, 3}});
+  EXPECT_EQ(edges.edge_of(0, 1), -1);  // side 1 -> 1
+  EXPECT_GE(edges.edge_of(0, 0), 0);
+  EXPECT_EQ(edges.valence(edges.find(0, 1)), 3);  // the sliver's two sides on 0-1 and the triangle's
+  EXPECT_EQ(edges.edge_count(), 5);               // 0-1, 0-2, 1-2, 1-3, 2-3
+}
