@@ -1,19 +1,16 @@
 #include "remesh/deviation_swaps.h"
 
+#include "remesh/side_faces.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <unordered_set>
 
 namespace mr::remesh {
 
 namespace {
-
-std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
-std::uint64_t undirected(int a, int b) { return directed(std::min(a, b), std::max(a, b)); }
 
 // Face pairs bent by less than about 10 degrees are left alone.
 const double kFlat = std::cos(10.0 * 3.14159265358979323846 / 180.0);
@@ -54,30 +51,20 @@ struct PairProbe {
 int swap_towards_surface(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
                          const SurfaceLocator& locator, const SizeField& size, const DeviationSwapParams& params) {
   std::unordered_set<std::uint64_t> fixed;
-  for (const auto& e : feature_edges) fixed.insert(undirected(e[0], e[1]));
+  for (const auto& e : feature_edges) fixed.insert(SideFaces::undirected(e[0], e[1]));
   const double floor = params.min_angle_deg * 3.14159265358979323846 / 180.0;
-  std::unordered_map<std::uint64_t, int> side_face;  // directed side -> face
-  side_face.reserve(out.faces.size() * 3);
-  for (size_t f = 0; f < out.faces.size(); ++f)
-    for (int z = 0; z < 3; ++z) side_face[directed(out.faces[f][z], out.faces[f][(z + 1) % 3])] = int(f);
+  SideFaces sides(out.faces);
 
   int swaps = 0;
   for (int pass = 0; pass < params.passes; ++pass) {
     int swaps_in_pass = 0;
     for (size_t fi = 0; fi < out.faces.size(); ++fi) {
       for (int z = 0; z < 3; ++z) {
-        const auto F = out.faces[fi];
-        const int x = F[z], y = F[(z + 1) % 3], c = F[(z + 2) % 3];
-        if (x > y || fixed.count(undirected(x, y))) continue;  // each edge once, from its lower end
-        auto it = side_face.find(directed(y, x));
-        if (it == side_face.end()) continue;
-        const int gi = it->second;
-        if (out.face_patch[gi] != out.face_patch[fi]) continue;
-        const auto G = out.faces[gi];
-        int d = -1;
-        for (int k = 0; k < 3; ++k) if (G[k] != x && G[k] != y) d = G[k];
-        if (d < 0 || d == c || side_face.count(directed(c, d)) || side_face.count(directed(d, c))) continue;
-
+        FacePair p;
+        if (!sides.swappable_pair(out, int(fi), z, p)) continue;
+        const int x = p.x, y = p.y, c = p.c, d = p.d;
+        // Each edge once, from its lower end; never a feature edge, never across patches.
+        if (x > y || fixed.count(SideFaces::undirected(x, y)) || out.face_patch[p.g] != out.face_patch[fi]) continue;
         // A nearly flat pair is the same surface with either diagonal.
         const Point3 nf = unit_normal(out.points[x], out.points[y], out.points[c]);
         const Point3 ng = unit_normal(out.points[y], out.points[x], out.points[d]);
@@ -88,7 +75,6 @@ int swap_towards_surface(OutputMesh& out, const std::vector<std::array<int, 2>>&
         if (before <= params.min_deviation * h) continue;
         const double old_min = std::min(min_angle(out.points[x], out.points[y], out.points[c]),
                                         min_angle(out.points[y], out.points[x], out.points[d]));
-        const std::array<int, 3> A = {x, d, c}, B = {d, y, c};
         const double new_min = std::min(min_angle(out.points[x], out.points[d], out.points[c]),
                                         min_angle(out.points[d], out.points[y], out.points[c]));
         if (new_min < std::min(old_min, floor)) continue;
@@ -97,16 +83,7 @@ int swap_towards_surface(OutputMesh& out, const std::vector<std::array<int, 2>>&
         if (!probe.follows_surface(x, d, c) || !probe.follows_surface(d, y, c)) continue;
         if (probe.deviation(c, d, x, y) >= params.gain * before) continue;
 
-        for (int k = 0; k < 3; ++k) {
-          side_face.erase(directed(F[k], F[(k + 1) % 3]));
-          side_face.erase(directed(G[k], G[(k + 1) % 3]));
-        }
-        out.faces[fi] = A;
-        out.faces[gi] = B;
-        for (int k = 0; k < 3; ++k) {
-          side_face[directed(A[k], A[(k + 1) % 3])] = int(fi);
-          side_face[directed(B[k], B[(k + 1) % 3])] = gi;
-        }
+        sides.swap(out, p);
         ++swaps_in_pass;
       }
     }

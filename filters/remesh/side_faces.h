@@ -1,0 +1,61 @@
+// Which face holds each directed side of the output, kept up through edge swaps: the post-pass
+// swaps find the face across an edge, and the fourth point of the pair, through it.
+#pragma once
+
+#include "remesh/output_mesh.h"
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace mr::remesh {
+
+/// Faces f = (x, y, c) and g = (y, x, d) across edge x-y, in their orientation.
+struct FacePair {
+  int f, g;
+  int x, y, c, d;
+};
+
+class SideFaces {
+public:
+  explicit SideFaces(const std::vector<std::array<int, 3>>& faces) {
+    face_.reserve(faces.size() * 3);
+    for (size_t f = 0; f < faces.size(); ++f)
+      for (int z = 0; z < 3; ++z) face_[directed(faces[f][z], faces[f][(z + 1) % 3])] = int(f);
+  }
+
+  /// The pair across side z of face f, if there is one whose swap to c-d would not repeat an
+  /// existing edge.
+  bool swappable_pair(const OutputMesh& out, int f, int z, FacePair& p) const {
+    const auto& F = out.faces[f];
+    p.f = f;
+    p.x = F[z], p.y = F[(z + 1) % 3], p.c = F[(z + 2) % 3];
+    auto it = face_.find(directed(p.y, p.x));
+    if (it == face_.end()) return false;
+    p.g = it->second;
+    p.d = -1;
+    for (int k : out.faces[p.g]) if (k != p.x && k != p.y) p.d = k;
+    return p.d >= 0 && p.d != p.c && !has_edge(p.c, p.d);
+  }
+
+  /// Swaps the pair's diagonal x-y to c-d: faces (x, d, c) and (d, y, c).
+  void swap(OutputMesh& out, const FacePair& p) {
+    for (int face : {p.f, p.g})
+      for (int k = 0; k < 3; ++k) face_.erase(directed(out.faces[face][k], out.faces[face][(k + 1) % 3]));
+    out.faces[p.f] = {p.x, p.d, p.c};
+    out.faces[p.g] = {p.d, p.y, p.c};
+    for (int face : {p.f, p.g})
+      for (int k = 0; k < 3; ++k) face_[directed(out.faces[face][k], out.faces[face][(k + 1) % 3])] = face;
+  }
+
+  bool has_edge(int a, int b) const { return face_.count(directed(a, b)) || face_.count(directed(b, a)); }
+
+  static std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
+  static std::uint64_t undirected(int a, int b) { return a < b ? directed(a, b) : directed(b, a); }
+
+private:
+  std::unordered_map<std::uint64_t, int> face_;  // directed side -> face
+};
+
+}  // namespace mr::remesh
