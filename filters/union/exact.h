@@ -37,7 +37,7 @@ private:
 QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint edge_plane_crossing(const double*, const double*, const double*, const double*, const double*);
-  friend QPoint crossing_from_integers(const mpz_class&, const mpz_class&, const mpz_class*, const mpz_class*, int);
+  friend QPoint crossing_from_integers(mpz_class&, mpz_class&, const mpz_class*, const mpz_class*, int);
   mutable std::unique_ptr<std::array<mpq_class, 3>> q_;
   mutable bool canonical_ = true;
 };
