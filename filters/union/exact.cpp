@@ -214,6 +214,26 @@ int orient2d(const double* a, const double* b, const double* c, int i, int j) {
   return orient2d_integer_sign(a, b, c, i, j);
 }
 
+int orient2d_filter(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
+  const double bx = b.d[i] - a.d[i], by = b.d[j] - a.d[j];
+  const double cx = c.d[i] - a.d[i], cy = c.d[j] - a.d[j];
+  const double l = bx * cy, r = by * cx;
+  const double det = l - r;
+  double bound;
+  if (a.exact_double && b.exact_double && c.exact_double) {
+    bound = 1e-15 * (std::fabs(l) + std::fabs(r));  // as orient2d on doubles
+  } else {  // as orient2d on rational points
+    const double m = std::max({std::fabs(a.d[i]), std::fabs(b.d[i]), std::fabs(c.d[i]), std::fabs(a.d[j]),
+                               std::fabs(b.d[j]), std::fabs(c.d[j])});
+    const double e = 6.7e-16 * m;
+    bound = 2 * (e * (std::fabs(bx) + std::fabs(by) + std::fabs(cx) + std::fabs(cy)) + 2 * e * e +
+                 3.3e-16 * (std::fabs(l) + std::fabs(r)));
+  }
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return 2;
+}
+
 int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
   if (a.exact_double && b.exact_double && c.exact_double) return orient2d(a.d.data(), b.d.data(), c.d.data(), i, j);
   const double bx = b.d[i] - a.d[i], by = b.d[j] - a.d[j];

@@ -26,9 +26,21 @@ public:
 private:
   const QPoint& P(int local) const { return pts_[ids_[local]]; }
   int orient(int a, int b, int c) const {
-    // Edge crossings lie on their edge: no exact arithmetic needed to see it.
+    // The filter decides most; where it cannot, edge crossings known to lie on their
+    // edge need no exact arithmetic.
+    const int s = orient2d_filter(P(a), P(b), P(c), pr_.i, pr_.j);
+    if (s != 2) return s;
     if (pts_.known_collinear(ids_[a], ids_[b], ids_[c])) return 0;
     return orient2d(P(a), P(b), P(c), pr_.i, pr_.j);
+  }
+  /// The boxes of segments (a, b) and (u, v) are apart in the projection (strictly on
+  /// the truncated doubles, which are monotone: then also on the rationals).
+  bool boxes_apart(int a, int b, int u, int v) const {
+    for (int k : {pr_.i, pr_.j})
+      if (std::max(P(a).d[k], P(b).d[k]) < std::min(P(u).d[k], P(v).d[k]) ||
+          std::max(P(u).d[k], P(v).d[k]) < std::min(P(a).d[k], P(b).d[k]))
+        return true;
+    return false;
   }
   bool in_box(int p, int a, int b) const;
   bool between(int p, int a, int b) const;
@@ -91,7 +103,7 @@ std::vector<std::array<int, 2>> FaceTriangulator::split_at_points(const std::vec
 }
 
 bool FaceTriangulator::crosses(int a, int b, int u, int v) const {
-  if (u == a || u == b || v == a || v == b) return false;
+  if (u == a || u == b || v == a || v == b || boxes_apart(a, b, u, v)) return false;
   const int o1 = orient(a, b, u), o2 = orient(a, b, v);
   if (o1 * o2 >= 0) return false;
   const int o3 = orient(u, v, a), o4 = orient(u, v, b);
@@ -104,12 +116,7 @@ bool FaceTriangulator::add_crossings(const std::vector<std::array<int, 2>>& segs
   for (size_t x = 0; x < n; ++x)
     for (size_t y = x + 1; y < n; ++y) {
       const int a = segs[x][0], b = segs[x][1], c = segs[y][0], d = segs[y][1];
-      bool disjoint = false;
-      for (int k : {pr_.i, pr_.j})
-        if (std::max(P(a).d[k], P(b).d[k]) < std::min(P(c).d[k], P(d).d[k]) ||
-            std::max(P(c).d[k], P(d).d[k]) < std::min(P(a).d[k], P(b).d[k]))
-          disjoint = true;
-      if (disjoint || !crosses(a, b, c, d)) continue;
+      if (!crosses(a, b, c, d)) continue;
       const mpq_class oa = orient2d_exact(P(c), P(d), P(a), pr_.i, pr_.j);
       const mpq_class ob = orient2d_exact(P(c), P(d), P(b), pr_.i, pr_.j);
       // The crossing lies on both segments: recorded, so splitting them needs no arithmetic.
@@ -221,6 +228,31 @@ double angle_at(const QPoint& o, const QPoint& p, const QPoint& q) {
   return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot);
 }
 
+/// The angles at c and d opposite edge (u, v) sum to more than `limit` (just above
+/// pi). The sign of sin(alpha + beta) (no atan2) decides clear cases; near pi the
+/// angles are summed as before, so the decisions are the same.
+bool opposite_angles_exceed(const QPoint& c, const QPoint& d, const QPoint& u, const QPoint& v, double limit) {
+  double sin_cos[2][2];  // per corner: |u x v| and u . v (unnormalized), and the norm product
+  double len[2];
+  const QPoint* corner[2] = {&c, &d};
+  for (int m = 0; m < 2; ++m) {
+    double a[3], b[3];
+    for (int k = 0; k < 3; ++k) { a[k] = u.d[k] - corner[m]->d[k]; b[k] = v.d[k] - corner[m]->d[k]; }
+    const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
+    sin_cos[m][0] = std::sqrt(cx * cx + cy * cy + cz * cz);
+    sin_cos[m][1] = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    len[m] = std::sqrt((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]));
+  }
+  const double scale = len[0] * len[1];
+  if (scale > 0) {
+    // sin(alpha + beta) = sin a cos b + cos a sin b; both angles in [0, pi].
+    const double s = (sin_cos[0][0] * sin_cos[1][1] + sin_cos[0][1] * sin_cos[1][0]) / scale;
+    if (s > 1e-6) return false;  // alpha + beta < pi
+    if (s < -1e-6) return true;  // pi + 1e-6 < alpha + beta < 2 pi
+  }
+  return angle_at(c, u, v) + angle_at(d, u, v) > limit;
+}
+
 // Flips unconstrained edges towards Delaunay, measured in 3D (the projection distorts angles).
 void FaceTriangulator::improve() {
   const double pi = 3.14159265358979323846;
@@ -234,7 +266,7 @@ void FaceTriangulator::improve() {
         if (it == edge_.end()) continue;
         const int t2 = it->second;
         const int c = third(t1, u, v), d = third(t2, v, u);
-        if (angle_at(P(c), P(u), P(v)) + angle_at(P(d), P(u), P(v)) <= pi + 1e-9) continue;
+        if (!opposite_angles_exceed(P(c), P(d), P(u), P(v), pi + 1e-9)) continue;
         if (!(orient(u, d, c) > 0 && orient(d, v, c) > 0)) continue;
         clear_tri(t1);
         clear_tri(t2);
