@@ -14,10 +14,54 @@ namespace {
 
 uint64_t key(int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); }
 
+/// Directed edge (a, b) of a face's local points -> its triangle. Most faces have a few
+/// points: a dense table indexed by (a, b), one buffer per thread reused across faces
+/// (only the entries a face wrote are reset), instead of a node-based hash map that
+/// spent its time allocating; a hash map for faces with many points.
+class EdgeTable {
+public:
+  void reset(int points) {
+    for (int i : touched_) dense_[i] = -1;
+    touched_.clear();
+    map_.clear();
+    use_dense_ = points <= kDense;
+    if (use_dense_ && dense_.empty()) dense_.assign(size_t(kDense) * kDense, -1);
+  }
+  int get(int a, int b) const {
+    if (use_dense_) return dense_[a * kDense + b];
+    auto it = map_.find(key(a, b));
+    return it == map_.end() ? -1 : it->second;
+  }
+  void set(int a, int b, int t) {
+    if (use_dense_) {
+      dense_[a * kDense + b] = t;
+      touched_.push_back(a * kDense + b);
+    } else {
+      map_[key(a, b)] = t;
+    }
+  }
+  /// Removes (a, b) if it still belongs to triangle t.
+  void erase_if(int a, int b, int t) {
+    if (use_dense_) {
+      if (dense_[a * kDense + b] == t) dense_[a * kDense + b] = -1;
+      return;
+    }
+    auto it = map_.find(key(a, b));
+    if (it != map_.end() && it->second == t) map_.erase(it);
+  }
+
+private:
+  static constexpr int kDense = 128;
+  bool use_dense_ = true;
+  std::vector<int> dense_;
+  std::vector<int> touched_;
+  std::unordered_map<uint64_t, int> map_;
+};
+
 class FaceTriangulator {
 public:
-  FaceTriangulator(PointTable& points, const std::array<int, 3>& corners)
-      : pts_(points), pr_(face_projection(points[corners[0]], points[corners[1]], points[corners[2]])) {
+  FaceTriangulator(PointTable& points, const std::array<int, 3>& corners, EdgeTable& edges)
+      : pts_(points), pr_(face_projection(points[corners[0]], points[corners[1]], points[corners[2]])), edge_(edges) {
     for (int c : corners) ids_.push_back(c);
   }
 
@@ -60,8 +104,8 @@ private:
   std::vector<int> ids_;  // local -> point-table index
   std::unordered_map<int, int> local_of_;
   std::vector<std::array<int, 3>> tri_;
-  std::unordered_map<uint64_t, int> edge_;  // directed edge -> triangle
-  std::unordered_set<uint64_t> constrained_;  // undirected (min, max)
+  EdgeTable& edge_;  // directed edge -> triangle
+  std::vector<std::array<int, 2>> segs_;  // the constraints (min, max), sorted: never flipped
 };
 
 bool FaceTriangulator::in_box(int p, int a, int b) const {
@@ -139,16 +183,15 @@ int FaceTriangulator::third(int t, int u, int v) const {
 
 void FaceTriangulator::set_tri(int t, int a, int b, int c) {
   tri_[t] = {a, b, c};
-  edge_[key(a, b)] = t;
-  edge_[key(b, c)] = t;
-  edge_[key(c, a)] = t;
+  edge_.set(a, b, t);
+  edge_.set(b, c, t);
+  edge_.set(c, a, t);
 }
 
 void FaceTriangulator::clear_tri(int t) {
   const auto& v = tri_[t];
   for (int z = 0; z < 3; ++z) {
-    auto it = edge_.find(key(v[z], v[(z + 1) % 3]));
-    if (it != edge_.end() && it->second == t) edge_.erase(it);
+    edge_.erase_if(v[z], v[(z + 1) % 3], t);
   }
 }
 
@@ -173,8 +216,7 @@ void FaceTriangulator::insert_point(int p) {
       return;
     }
     const int a = v[on], b = v[(on + 1) % 3], c = v[(on + 2) % 3];
-    auto it = edge_.find(key(b, a));
-    const int u = it == edge_.end() ? -1 : it->second;
+    const int u = edge_.get(b, a);
     clear_tri(t);
     set_tri(t, a, p, c);
     set_tri(new_tri(), p, b, c);
@@ -190,8 +232,7 @@ void FaceTriangulator::insert_point(int p) {
 }
 
 void FaceTriangulator::recover(int a, int b) {
-  constrained_.insert(key(std::min(a, b), std::max(a, b)));
-  if (edge_.count(key(a, b)) || edge_.count(key(b, a))) return;
+  if (edge_.get(a, b) >= 0 || edge_.get(b, a) >= 0) return;
   std::deque<std::array<int, 2>> queue;
   for (const auto& v : tri_)
     for (int z = 0; z < 3; ++z) {
@@ -204,9 +245,8 @@ void FaceTriangulator::recover(int a, int b) {
     if (++guard > limit) throw AlgorithmFailure("union: could not recover an intersection segment in a face");
     const auto [u, v] = queue.front();
     queue.pop_front();
-    auto i1 = edge_.find(key(u, v)), i2 = edge_.find(key(v, u));
-    if (i1 == edge_.end() || i2 == edge_.end()) continue;  // no longer an edge
-    const int t1 = i1->second, t2 = i2->second;
+    const int t1 = edge_.get(u, v), t2 = edge_.get(v, u);
+    if (t1 < 0 || t2 < 0) continue;  // no longer an edge
     const int c = third(t1, u, v), d = third(t2, v, u);
     if (orient(u, d, c) > 0 && orient(d, v, c) > 0) {
       clear_tri(t1);
@@ -261,10 +301,10 @@ void FaceTriangulator::improve() {
     for (int t1 = 0; t1 < int(tri_.size()); ++t1) {
       for (int z = 0; z < 3; ++z) {
         const int u = tri_[t1][z], v = tri_[t1][(z + 1) % 3];
-        if (constrained_.count(key(std::min(u, v), std::max(u, v)))) continue;
-        auto it = edge_.find(key(v, u));
-        if (it == edge_.end()) continue;
-        const int t2 = it->second;
+        if (std::binary_search(segs_.begin(), segs_.end(), std::array<int, 2>{std::min(u, v), std::max(u, v)}))
+          continue;
+        const int t2 = edge_.get(v, u);
+        if (t2 < 0) continue;
         const int c = third(t1, u, v), d = third(t2, v, u);
         if (!opposite_angles_exceed(P(c), P(d), P(u), P(v), pi + 1e-9)) continue;
         if (!(orient(u, d, c) > 0 && orient(d, v, c) > 0)) continue;
@@ -301,11 +341,12 @@ void FaceTriangulator::run(const FaceConstraints& c, std::vector<std::array<int,
   if (add_crossings(segs)) segs = split_at_points(segs);
 
   tri_.clear();
-  edge_.clear();
+  edge_.reset(int(ids_.size()));
   tri_.push_back({-1, -1, -1});
   set_tri(0, 0, 1, 2);
   for (int p = 3; p < int(ids_.size()); ++p) insert_point(p);
   for (const auto& s : segs) recover(s[0], s[1]);
+  segs_ = std::move(segs);  // sorted and unique (split_at_points)
   improve();
   for (const auto& v : tri_) out.push_back({ids_[v[0]], ids_[v[1]], ids_[v[2]]});
 }
@@ -315,7 +356,8 @@ void FaceTriangulator::run(const FaceConstraints& c, std::vector<std::array<int,
 int triangulate_face(PointTable& points, const std::array<int, 3>& corners, const FaceConstraints& c,
                      std::vector<std::array<int, 3>>& out) {
   const size_t before = out.size();
-  FaceTriangulator(points, corners).run(c, out);
+  thread_local EdgeTable edges;  // its buffer is reused by every face
+  FaceTriangulator(points, corners, edges).run(c, out);
   return int(out.size() - before);
 }
 
