@@ -16,6 +16,11 @@ V3 cross(const V3& a, const V3& b) {
 
 /// Segment (p, q) meets the closed triangle (a, b, c) (exact; coplanar counts as a hit).
 bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+  // Boxes apart (exact comparisons): no predicate needed. The segment is often a side
+  // lying in the plane of a long face, far from this triangle's part of it.
+  for (int k = 0; k < 3; ++k)
+    if (std::max(p[k], q[k]) < std::min({a[k], b[k], c[k]}) || std::min(p[k], q[k]) > std::max({a[k], b[k], c[k]}))
+      return false;
   const int sp = orient3d(a.data(), b.data(), c.data(), p.data());
   const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
   if (sp * sq > 0) return false;
