@@ -232,6 +232,17 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
   return false;
 }
 
+bool flat_convex_quad(const V3& u, const V3& v, const V3& c, const V3& d) {
+  if (orient3d(u.data(), v.data(), c.data(), d.data()) != 0) return false;
+  // In the plane, seen across any axis where (u, v, c) does not degenerate: both old
+  // and both new triangles turn the same way, so the diagonals cross inside.
+  const V3 T[3] = {u, v, c};
+  const int k = largest_normal_axis(T), i = (k + 1) % 3, j = (k + 2) % 3;
+  auto o = [&](const V3& p, const V3& q, const V3& r) { return orient2d(p.data(), q.data(), r.data(), i, j); };
+  const int s = o(u, v, c);
+  return s != 0 && o(v, u, d) == s && o(u, d, c) == s && o(d, v, c) == s;
+}
+
 FaceGrid::FaceGrid(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& faces)
     : vertices_(vertices), faces_(faces), boxes_(faces.size()), level_(faces.size(), -1), seen_(faces.size(), 0) {
   if (faces.empty()) return;

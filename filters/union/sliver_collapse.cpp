@@ -408,7 +408,8 @@ bool Collapser::try_flip(int f, int z) {
   replaced_ = {f, g};
   new_ids_ = {{u, d, c}, {d, v, c}};
   new_pos_ = {{P(u), P(d), P(c)}, {P(d), P(v), P(c)}};
-  if (!stays_clear()) return false;
+  // A flat convex quad (CAD plates) covers the same place after the flip: nothing to check.
+  if (!flat_convex_quad(P(u), P(v), P(c), P(d)) && !stays_clear()) return false;
   r_.faces[f] = {u, d, c};
   r_.faces[g] = {d, v, c};
   angle_[f] = angle_[g] = -1;
