@@ -214,6 +214,26 @@ int orient2d(const double* a, const double* b, const double* c, int i, int j) {
   return orient2d_integer_sign(a, b, c, i, j);
 }
 
+int orient2d_filter(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
+  const double bx = b.d[i] - a.d[i], by = b.d[j] - a.d[j];
+  const double cx = c.d[i] - a.d[i], cy = c.d[j] - a.d[j];
+  const double l = bx * cy, r = by * cx;
+  const double det = l - r;
+  double bound;
+  if (a.exact_double && b.exact_double && c.exact_double) {
+    bound = 1e-15 * (std::fabs(l) + std::fabs(r));  // as orient2d on doubles
+  } else {  // as orient2d on rational points
+    const double m = std::max({std::fabs(a.d[i]), std::fabs(b.d[i]), std::fabs(c.d[i]), std::fabs(a.d[j]),
+                               std::fabs(b.d[j]), std::fabs(c.d[j])});
+    const double e = 6.7e-16 * m;
+    bound = 2 * (e * (std::fabs(bx) + std::fabs(by) + std::fabs(cx) + std::fabs(cy)) + 2 * e * e +
+                 3.3e-16 * (std::fabs(l) + std::fabs(r)));
+  }
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return 2;
+}
+
 int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
   if (a.exact_double && b.exact_double && c.exact_double) return orient2d(a.d.data(), b.d.data(), c.d.data(), i, j);
   const double bx = b.d[i] - a.d[i], by = b.d[j] - a.d[j];
@@ -237,23 +257,28 @@ namespace {
 
 /// Integers m_i with values[i] = m_i * 2^e for one common exponent e (returned).
 int scale_to_integers(const double* const* values, int n, mpz_class* out) {
-  int emin = std::numeric_limits<int>::max();
-  std::int64_t mant[16];
-  int expo[16];
+  // Each nonzero double is an integer of at most 53 bits times 2^(ilogb - 52).
+  int emin = std::numeric_limits<int>::max(), emax = std::numeric_limits<int>::min();
   for (int i = 0; i < n; ++i) {
     const double v = *values[i];
-    if (v == 0) { mant[i] = 0; expo[i] = 0; continue; }
-    int e;
-    const double f = std::frexp(v, &e);  // v = f 2^e, 0.5 <= |f| < 1
-    mant[i] = std::int64_t(std::ldexp(f, 53));
-    expo[i] = e - 53;
-    emin = std::min(emin, expo[i]);
+    if (v == 0) continue;
+    const int e = std::ilogb(v) - 52;
+    emin = std::min(emin, e);
+    emax = std::max(emax, e);
   }
-  if (emin == std::numeric_limits<int>::max()) emin = 0;
-  for (int i = 0; i < n; ++i) {
-    out[i] = static_cast<long>(mant[i]);
-    if (mant[i] != 0) mpz_mul_2exp(out[i].get_mpz_t(), out[i].get_mpz_t(), expo[i] - emin);
+  if (emin == std::numeric_limits<int>::max()) emin = emax = 0;
+  if (emax - emin > 900) {  // the scaled values would overflow a double: shift in GMP
+    for (int i = 0; i < n; ++i) {
+      const double v = *values[i];
+      if (v == 0) { out[i] = 0; continue; }
+      const int e = std::ilogb(v) - 52;
+      mpz_set_d(out[i].get_mpz_t(), std::ldexp(v, -e));
+      mpz_mul_2exp(out[i].get_mpz_t(), out[i].get_mpz_t(), e - emin);
+    }
+    return emin;
   }
+  // Scaling by a power of two is exact, and mpz_set_d is exact on integral doubles.
+  for (int i = 0; i < n; ++i) mpz_set_d(out[i].get_mpz_t(), std::ldexp(*values[i], -emin));
   return emin;
 }
 
@@ -322,7 +347,7 @@ int perpendicular_dot_integer_sign(const double* u, const double* w, const doubl
 
 }  // namespace
 
-QPoint crossing_from_integers(const mpz_class& oa, const mpz_class& ob, const mpz_class* A, const mpz_class* B, int e);
+QPoint crossing_from_integers(mpz_class& oa, mpz_class& ob, const mpz_class* A, const mpz_class* B, int e);
 
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2) {
   const double* vals[15];
@@ -334,7 +359,7 @@ QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, c
     vals[12 + k] = &f2[k];
   }
   thread_local mpz_class z[15];  // reused across calls (saves allocations)
-  thread_local mpz_class u[3], v[3], ra[3], rb[3];
+  thread_local mpz_class u[3], v[3], ra[3], rb[3], n[3], oa, ob;
   const int e = scale_to_integers(vals, 15, z);
   const mpz_class *A = z, *B = z + 3, *F0 = z + 6, *F1 = z + 9, *F2 = z + 12;
   for (int k = 0; k < 3; ++k) {
@@ -343,36 +368,43 @@ QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, c
     ra[k] = A[k] - F0[k];
     rb[k] = B[k] - F0[k];
   }
-  const mpz_class n0 = u[1] * v[2] - u[2] * v[1], n1 = u[2] * v[0] - u[0] * v[2], n2 = u[0] * v[1] - u[1] * v[0];
-  mpz_class oa = n0 * ra[0] + n1 * ra[1] + n2 * ra[2];
-  mpz_class ob = n0 * rb[0] + n1 * rb[1] + n2 * rb[2];
+  // n = u x v and the two sides, with fused multiply-adds (no temporaries).
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    mpz_mul(n[k].get_mpz_t(), u[i].get_mpz_t(), v[j].get_mpz_t());
+    mpz_submul(n[k].get_mpz_t(), u[j].get_mpz_t(), v[i].get_mpz_t());
+  }
+  mpz_mul(oa.get_mpz_t(), n[0].get_mpz_t(), ra[0].get_mpz_t());
+  mpz_mul(ob.get_mpz_t(), n[0].get_mpz_t(), rb[0].get_mpz_t());
+  for (int k = 1; k < 3; ++k) {
+    mpz_addmul(oa.get_mpz_t(), n[k].get_mpz_t(), ra[k].get_mpz_t());
+    mpz_addmul(ob.get_mpz_t(), n[k].get_mpz_t(), rb[k].get_mpz_t());
+  }
   return crossing_from_integers(oa, ob, A, B, e);
 }
 
 /// The point (oa B - ob A) / (oa - ob) 2^e, for integer points A, B, with its
 /// truncated doubles; the rationals stay unreduced until used (the gcd is the
-/// expensive part, and most crossings are never needed exactly).
-QPoint crossing_from_integers(const mpz_class& oa_in, const mpz_class& ob_in, const mpz_class* A, const mpz_class* B,
-                              int e) {
-  thread_local mpz_class oa, ob, den;
-  oa = oa_in;
-  ob = ob_in;
-  den = oa - ob;
+/// expensive part, and most crossings are never needed exactly). oa and ob are scratch
+/// (their signs may be flipped).
+QPoint crossing_from_integers(mpz_class& oa, mpz_class& ob, const mpz_class* A, const mpz_class* B, int e) {
+  thread_local mpz_class den;
+  mpz_sub(den.get_mpz_t(), oa.get_mpz_t(), ob.get_mpz_t());
   if (sgn(den) < 0) {  // a positive denominator: the truncated doubles need no canonical form
-    den = -den;
-    oa = -oa;
-    ob = -ob;
+    mpz_neg(den.get_mpz_t(), den.get_mpz_t());
+    mpz_neg(oa.get_mpz_t(), oa.get_mpz_t());
+    mpz_neg(ob.get_mpz_t(), ob.get_mpz_t());
   }
+  if (e < 0) mpz_mul_2exp(den.get_mpz_t(), den.get_mpz_t(), -e);  // once for the three coordinates
   QPoint r;
   r.q_ = std::make_unique<std::array<mpq_class, 3>>();
   for (int k = 0; k < 3; ++k) {
     mpq_class& c = (*r.q_)[k];
-    mpz_class& num = c.get_num();
-    num = oa * B[k] - ob * A[k];
-    mpz_class& d = c.get_den();
-    d = den;
-    if (e >= 0) num <<= e;
-    else d <<= -e;
+    mpz_ptr num = c.get_num_mpz_t();
+    mpz_mul(num, oa.get_mpz_t(), B[k].get_mpz_t());  // no temporaries
+    mpz_submul(num, ob.get_mpz_t(), A[k].get_mpz_t());
+    if (e > 0) mpz_mul_2exp(num, num, e);
+    mpz_set(c.get_den_mpz_t(), den.get_mpz_t());
     r.d[k] = c.get_d();
   }
   r.canonical_ = false;

@@ -37,7 +37,7 @@ private:
 QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint edge_plane_crossing(const double*, const double*, const double*, const double*, const double*);
-  friend QPoint crossing_from_integers(const mpz_class&, const mpz_class&, const mpz_class*, const mpz_class*, int);
+  friend QPoint crossing_from_integers(mpz_class&, mpz_class&, const mpz_class*, const mpz_class*, int);
   mutable std::unique_ptr<std::array<mpq_class, 3>> q_;
   mutable bool canonical_ = true;
 };
@@ -67,6 +67,10 @@ mpq_class orient3d_exact(const double* a, const double* b, const double* c, cons
 
 /// Sign of det[b-a, c-a] of the projections of a, b, c on axes (i, j). Exact.
 int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
+
+/// Sign of det[b-a, c-a] on axes (i, j) where the floating-point filter of orient2d
+/// decides it, else 2 (no exact arithmetic).
+int orient2d_filter(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
 
 /// det[b-a, c-a] on axes (i, j), exactly.
 mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);

@@ -16,6 +16,11 @@ V3 cross(const V3& a, const V3& b) {
 
 /// Segment (p, q) meets the closed triangle (a, b, c) (exact; coplanar counts as a hit).
 bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+  // Boxes apart (exact comparisons): no predicate needed. The segment is often a side
+  // lying in the plane of a long face, far from this triangle's part of it.
+  for (int k = 0; k < 3; ++k)
+    if (std::max(p[k], q[k]) < std::min({a[k], b[k], c[k]}) || std::min(p[k], q[k]) > std::max({a[k], b[k], c[k]}))
+      return false;
   const int sp = orient3d(a.data(), b.data(), c.data(), p.data());
   const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
   if (sp * sq > 0) return false;
@@ -105,21 +110,44 @@ bool separated_in_projection(const V3 F[3], const V3 G[3], int sf, int sg, int k
   return false;
 }
 
-/// Sides of the points B[0..2] of A's plane, exactly: orient3d(A[0], A[1], A[2], B[i]).
-/// The normal is computed once for the three; the same filter bound as orient3d (this
-/// is its expansion along d - a), the exact predicate only where the filter cannot tell.
-void plane_sides(const V3 A[3], const V3 B[3], int out[3]) {
+/// Sides of the points B[0..2] of A's plane as far as a floating-point filter tells:
+/// orient3d(A[0], A[1], A[2], B[i]) where certain, kUnknown where not. B's corner
+/// `in_plane` (the shared corner, or -1) is in the plane without a test. The normal is
+/// computed once for the three; the same filter bound as orient3d (this is its
+/// expansion along d - a). Returns false when some side is unknown.
+constexpr int kUnknown = 2;
+bool filtered_plane_sides(const V3 A[3], const V3 B[3], int in_plane, int out[3]) {
   const double bx = A[1][0] - A[0][0], by = A[1][1] - A[0][1], bz = A[1][2] - A[0][2];
   const double cx = A[2][0] - A[0][0], cy = A[2][1] - A[0][1], cz = A[2][2] - A[0][2];
   const double n0 = by * cz - bz * cy, n1 = bz * cx - bx * cz, n2 = bx * cy - by * cx;
   const double m0 = std::fabs(by * cz) + std::fabs(bz * cy), m1 = std::fabs(bz * cx) + std::fabs(bx * cz),
                m2 = std::fabs(bx * cy) + std::fabs(by * cx);
+  bool sure = true;
   for (int i = 0; i < 3; ++i) {
+    if (i == in_plane) {
+      out[i] = 0;
+      continue;
+    }
     const double dx = B[i][0] - A[0][0], dy = B[i][1] - A[0][1], dz = B[i][2] - A[0][2];
     const double det = dx * n0 + dy * n1 + dz * n2;
     const double bound = 1e-14 * (std::fabs(dx) * m0 + std::fabs(dy) * m1 + std::fabs(dz) * m2);
-    out[i] = det > bound ? 1 : det < -bound ? -1 : orient3d(A[0].data(), A[1].data(), A[2].data(), B[i].data());
+    out[i] = det > bound ? 1 : det < -bound ? -1 : kUnknown;
+    sure &= out[i] != kUnknown;
   }
+  return sure;
+}
+
+/// The sides the filter left unknown, exactly.
+void resolve_plane_sides(const V3 A[3], const V3 B[3], int sides[3]) {
+  for (int i = 0; i < 3; ++i)
+    if (sides[i] == kUnknown) sides[i] = orient3d(A[0].data(), A[1].data(), A[2].data(), B[i].data());
+}
+
+/// All of B but the shared corner strictly on one side of A's plane (sides known).
+bool strictly_one_side(const int sides[3], int shared) {
+  int pos = 0, neg = 0;
+  for (int i = 0; i < 3; ++i) { pos += sides[i] == 1; neg += sides[i] == -1; }
+  return pos + shared == 3 || neg + shared == 3;
 }
 
 int largest_normal_axis(const V3 T[3]) {
@@ -139,14 +167,32 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
       if (a[i] == b[j] || F[i] == G[j]) { ++shared; sf = i; sg = j; }
   if (shared >= 2) return false;  // neighbours across an edge
   // Separating planes: a face strictly on one side of the other's plane (but for a
-  // shared corner) cannot meet it (neighbours on a curved surface).
+  // shared corner) cannot meet it (neighbours on a curved surface). First what the
+  // floating-point filter tells; the exact predicates only where it cannot.
+  int sides[2][3];
+  bool sure[2];
+  for (int k = 0; k < 2; ++k) {
+    const int in_plane = shared == 1 ? (k == 0 ? sg : sf) : -1;  // B's shared corner
+    sure[k] = filtered_plane_sides(k == 0 ? F : G, k == 0 ? G : F, in_plane, sides[k]);
+    if (sure[k] && strictly_one_side(sides[k], shared)) return false;
+  }
+  // Nearly coplanar neighbours (pieces of one input face, slivers): the projection
+  // decides most of them on the doubles, cheaper than exact plane sides.
+  const int kf = largest_normal_axis(F), kg = largest_normal_axis(G);
+  const int cf = shared == 1 ? sf : -1, cg = shared == 1 ? sg : -1;
+  bool projection_tried = false;
+  if (!sure[0] || !sure[1]) {
+    if (separated_in_projection(F, G, cf, cg, kf) || (kg != kf && separated_in_projection(F, G, cf, cg, kg)))
+      return false;
+    projection_tried = true;
+  }
   for (int k = 0; k < 2; ++k) {
     const V3* A = k == 0 ? F : G;
     const V3* B = k == 0 ? G : F;
-    int pos = 0, neg = 0, zero = 0, on[3], sides[3];
-    plane_sides(A, B, sides);
+    int pos = 0, neg = 0, zero = 0, on[3];
+    resolve_plane_sides(A, B, sides[k]);
     for (int i = 0; i < 3; ++i) {
-      const int o = sides[i];
+      const int o = sides[k][i];
       pos += o > 0;
       neg += o < 0;
       if (o == 0) on[zero++] = i;
@@ -173,9 +219,8 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
   }
   // Then in a projection (across F's, then G's largest normal component): neighbours
   // in one plane or across a crease.
-  const int kf = largest_normal_axis(F), kg = largest_normal_axis(G);
-  const int cf = shared == 1 ? sf : -1, cg = shared == 1 ? sg : -1;
-  if (separated_in_projection(F, G, cf, cg, kf) || (kg != kf && separated_in_projection(F, G, cf, cg, kg)))
+  if (!projection_tried &&
+      (separated_in_projection(F, G, cf, cg, kf) || (kg != kf && separated_in_projection(F, G, cf, cg, kg))))
     return false;
   if (shared == 1)  // only the edges opposite the shared corner can cross the other face
     return segment_meets_triangle(F[(sf + 1) % 3], F[(sf + 2) % 3], G[0], G[1], G[2]) ||
@@ -185,6 +230,17 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
         segment_meets_triangle(G[e], G[(e + 1) % 3], F[0], F[1], F[2]))
       return true;
   return false;
+}
+
+bool flat_convex_quad(const V3& u, const V3& v, const V3& c, const V3& d) {
+  if (orient3d(u.data(), v.data(), c.data(), d.data()) != 0) return false;
+  // In the plane, seen across any axis where (u, v, c) does not degenerate: both old
+  // and both new triangles turn the same way, so the diagonals cross inside.
+  const V3 T[3] = {u, v, c};
+  const int k = largest_normal_axis(T), i = (k + 1) % 3, j = (k + 2) % 3;
+  auto o = [&](const V3& p, const V3& q, const V3& r) { return orient2d(p.data(), q.data(), r.data(), i, j); };
+  const int s = o(u, v, c);
+  return s != 0 && o(v, u, d) == s && o(u, d, c) == s && o(d, v, c) == s;
 }
 
 FaceGrid::FaceGrid(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& faces)

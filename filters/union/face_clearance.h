@@ -19,6 +19,11 @@ using V3 = std::array<double, 3>;
 /// the doubles).
 bool triangles_meet(const std::array<int, 3>& a, const V3 pa[3], const std::array<int, 3>& b, const V3 pb[3]);
 
+/// Faces (u, v, c) and (v, u, d) form a strictly convex quadrilateral lying exactly in
+/// one plane. Flipping its diagonal to (c, d) then leaves the surface where it was,
+/// so the flip cannot make faces meet that did not. Exact.
+bool flat_convex_quad(const V3& u, const V3& v, const V3& c, const V3& d);
+
 /// Uniform grid over the boxes of the faces of a mesh whose geometry changes. It only
 /// grows: a face whose geometry changed is added again at its new place; a lookup
 /// returns each face whose current box overlaps the query box exactly once.

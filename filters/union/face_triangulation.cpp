@@ -14,10 +14,54 @@ namespace {
 
 uint64_t key(int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); }
 
+/// Directed edge (a, b) of a face's local points -> its triangle. Most faces have a few
+/// points: a dense table indexed by (a, b), one buffer per thread reused across faces
+/// (only the entries a face wrote are reset), instead of a node-based hash map that
+/// spent its time allocating; a hash map for faces with many points.
+class EdgeTable {
+public:
+  void reset(int points) {
+    for (int i : touched_) dense_[i] = -1;
+    touched_.clear();
+    map_.clear();
+    use_dense_ = points <= kDense;
+    if (use_dense_ && dense_.empty()) dense_.assign(size_t(kDense) * kDense, -1);
+  }
+  int get(int a, int b) const {
+    if (use_dense_) return dense_[a * kDense + b];
+    auto it = map_.find(key(a, b));
+    return it == map_.end() ? -1 : it->second;
+  }
+  void set(int a, int b, int t) {
+    if (use_dense_) {
+      dense_[a * kDense + b] = t;
+      touched_.push_back(a * kDense + b);
+    } else {
+      map_[key(a, b)] = t;
+    }
+  }
+  /// Removes (a, b) if it still belongs to triangle t.
+  void erase_if(int a, int b, int t) {
+    if (use_dense_) {
+      if (dense_[a * kDense + b] == t) dense_[a * kDense + b] = -1;
+      return;
+    }
+    auto it = map_.find(key(a, b));
+    if (it != map_.end() && it->second == t) map_.erase(it);
+  }
+
+private:
+  static constexpr int kDense = 128;
+  bool use_dense_ = true;
+  std::vector<int> dense_;
+  std::vector<int> touched_;
+  std::unordered_map<uint64_t, int> map_;
+};
+
 class FaceTriangulator {
 public:
-  FaceTriangulator(PointTable& points, const std::array<int, 3>& corners)
-      : pts_(points), pr_(face_projection(points[corners[0]], points[corners[1]], points[corners[2]])) {
+  FaceTriangulator(PointTable& points, const std::array<int, 3>& corners, EdgeTable& edges)
+      : pts_(points), pr_(face_projection(points[corners[0]], points[corners[1]], points[corners[2]])), edge_(edges) {
     for (int c : corners) ids_.push_back(c);
   }
 
@@ -26,9 +70,21 @@ public:
 private:
   const QPoint& P(int local) const { return pts_[ids_[local]]; }
   int orient(int a, int b, int c) const {
-    // Edge crossings lie on their edge: no exact arithmetic needed to see it.
+    // The filter decides most; where it cannot, edge crossings known to lie on their
+    // edge need no exact arithmetic.
+    const int s = orient2d_filter(P(a), P(b), P(c), pr_.i, pr_.j);
+    if (s != 2) return s;
     if (pts_.known_collinear(ids_[a], ids_[b], ids_[c])) return 0;
     return orient2d(P(a), P(b), P(c), pr_.i, pr_.j);
+  }
+  /// The boxes of segments (a, b) and (u, v) are apart in the projection (strictly on
+  /// the truncated doubles, which are monotone: then also on the rationals).
+  bool boxes_apart(int a, int b, int u, int v) const {
+    for (int k : {pr_.i, pr_.j})
+      if (std::max(P(a).d[k], P(b).d[k]) < std::min(P(u).d[k], P(v).d[k]) ||
+          std::max(P(u).d[k], P(v).d[k]) < std::min(P(a).d[k], P(b).d[k]))
+        return true;
+    return false;
   }
   bool in_box(int p, int a, int b) const;
   bool between(int p, int a, int b) const;
@@ -48,8 +104,8 @@ private:
   std::vector<int> ids_;  // local -> point-table index
   std::unordered_map<int, int> local_of_;
   std::vector<std::array<int, 3>> tri_;
-  std::unordered_map<uint64_t, int> edge_;  // directed edge -> triangle
-  std::unordered_set<uint64_t> constrained_;  // undirected (min, max)
+  EdgeTable& edge_;  // directed edge -> triangle
+  std::vector<std::array<int, 2>> segs_;  // the constraints (min, max), sorted: never flipped
 };
 
 bool FaceTriangulator::in_box(int p, int a, int b) const {
@@ -91,7 +147,7 @@ std::vector<std::array<int, 2>> FaceTriangulator::split_at_points(const std::vec
 }
 
 bool FaceTriangulator::crosses(int a, int b, int u, int v) const {
-  if (u == a || u == b || v == a || v == b) return false;
+  if (u == a || u == b || v == a || v == b || boxes_apart(a, b, u, v)) return false;
   const int o1 = orient(a, b, u), o2 = orient(a, b, v);
   if (o1 * o2 >= 0) return false;
   const int o3 = orient(u, v, a), o4 = orient(u, v, b);
@@ -104,12 +160,7 @@ bool FaceTriangulator::add_crossings(const std::vector<std::array<int, 2>>& segs
   for (size_t x = 0; x < n; ++x)
     for (size_t y = x + 1; y < n; ++y) {
       const int a = segs[x][0], b = segs[x][1], c = segs[y][0], d = segs[y][1];
-      bool disjoint = false;
-      for (int k : {pr_.i, pr_.j})
-        if (std::max(P(a).d[k], P(b).d[k]) < std::min(P(c).d[k], P(d).d[k]) ||
-            std::max(P(c).d[k], P(d).d[k]) < std::min(P(a).d[k], P(b).d[k]))
-          disjoint = true;
-      if (disjoint || !crosses(a, b, c, d)) continue;
+      if (!crosses(a, b, c, d)) continue;
       const mpq_class oa = orient2d_exact(P(c), P(d), P(a), pr_.i, pr_.j);
       const mpq_class ob = orient2d_exact(P(c), P(d), P(b), pr_.i, pr_.j);
       // The crossing lies on both segments: recorded, so splitting them needs no arithmetic.
@@ -132,16 +183,15 @@ int FaceTriangulator::third(int t, int u, int v) const {
 
 void FaceTriangulator::set_tri(int t, int a, int b, int c) {
   tri_[t] = {a, b, c};
-  edge_[key(a, b)] = t;
-  edge_[key(b, c)] = t;
-  edge_[key(c, a)] = t;
+  edge_.set(a, b, t);
+  edge_.set(b, c, t);
+  edge_.set(c, a, t);
 }
 
 void FaceTriangulator::clear_tri(int t) {
   const auto& v = tri_[t];
   for (int z = 0; z < 3; ++z) {
-    auto it = edge_.find(key(v[z], v[(z + 1) % 3]));
-    if (it != edge_.end() && it->second == t) edge_.erase(it);
+    edge_.erase_if(v[z], v[(z + 1) % 3], t);
   }
 }
 
@@ -166,8 +216,7 @@ void FaceTriangulator::insert_point(int p) {
       return;
     }
     const int a = v[on], b = v[(on + 1) % 3], c = v[(on + 2) % 3];
-    auto it = edge_.find(key(b, a));
-    const int u = it == edge_.end() ? -1 : it->second;
+    const int u = edge_.get(b, a);
     clear_tri(t);
     set_tri(t, a, p, c);
     set_tri(new_tri(), p, b, c);
@@ -183,8 +232,7 @@ void FaceTriangulator::insert_point(int p) {
 }
 
 void FaceTriangulator::recover(int a, int b) {
-  constrained_.insert(key(std::min(a, b), std::max(a, b)));
-  if (edge_.count(key(a, b)) || edge_.count(key(b, a))) return;
+  if (edge_.get(a, b) >= 0 || edge_.get(b, a) >= 0) return;
   std::deque<std::array<int, 2>> queue;
   for (const auto& v : tri_)
     for (int z = 0; z < 3; ++z) {
@@ -197,9 +245,8 @@ void FaceTriangulator::recover(int a, int b) {
     if (++guard > limit) throw AlgorithmFailure("union: could not recover an intersection segment in a face");
     const auto [u, v] = queue.front();
     queue.pop_front();
-    auto i1 = edge_.find(key(u, v)), i2 = edge_.find(key(v, u));
-    if (i1 == edge_.end() || i2 == edge_.end()) continue;  // no longer an edge
-    const int t1 = i1->second, t2 = i2->second;
+    const int t1 = edge_.get(u, v), t2 = edge_.get(v, u);
+    if (t1 < 0 || t2 < 0) continue;  // no longer an edge
     const int c = third(t1, u, v), d = third(t2, v, u);
     if (orient(u, d, c) > 0 && orient(d, v, c) > 0) {
       clear_tri(t1);
@@ -221,6 +268,31 @@ double angle_at(const QPoint& o, const QPoint& p, const QPoint& q) {
   return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot);
 }
 
+/// The angles at c and d opposite edge (u, v) sum to more than `limit` (just above
+/// pi). The sign of sin(alpha + beta) (no atan2) decides clear cases; near pi the
+/// angles are summed as before, so the decisions are the same.
+bool opposite_angles_exceed(const QPoint& c, const QPoint& d, const QPoint& u, const QPoint& v, double limit) {
+  double sin_cos[2][2];  // per corner: |u x v| and u . v (unnormalized), and the norm product
+  double len[2];
+  const QPoint* corner[2] = {&c, &d};
+  for (int m = 0; m < 2; ++m) {
+    double a[3], b[3];
+    for (int k = 0; k < 3; ++k) { a[k] = u.d[k] - corner[m]->d[k]; b[k] = v.d[k] - corner[m]->d[k]; }
+    const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
+    sin_cos[m][0] = std::sqrt(cx * cx + cy * cy + cz * cz);
+    sin_cos[m][1] = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    len[m] = std::sqrt((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]));
+  }
+  const double scale = len[0] * len[1];
+  if (scale > 0) {
+    // sin(alpha + beta) = sin a cos b + cos a sin b; both angles in [0, pi].
+    const double s = (sin_cos[0][0] * sin_cos[1][1] + sin_cos[0][1] * sin_cos[1][0]) / scale;
+    if (s > 1e-6) return false;  // alpha + beta < pi
+    if (s < -1e-6) return true;  // pi + 1e-6 < alpha + beta < 2 pi
+  }
+  return angle_at(c, u, v) + angle_at(d, u, v) > limit;
+}
+
 // Flips unconstrained edges towards Delaunay, measured in 3D (the projection distorts angles).
 void FaceTriangulator::improve() {
   const double pi = 3.14159265358979323846;
@@ -229,12 +301,12 @@ void FaceTriangulator::improve() {
     for (int t1 = 0; t1 < int(tri_.size()); ++t1) {
       for (int z = 0; z < 3; ++z) {
         const int u = tri_[t1][z], v = tri_[t1][(z + 1) % 3];
-        if (constrained_.count(key(std::min(u, v), std::max(u, v)))) continue;
-        auto it = edge_.find(key(v, u));
-        if (it == edge_.end()) continue;
-        const int t2 = it->second;
+        if (std::binary_search(segs_.begin(), segs_.end(), std::array<int, 2>{std::min(u, v), std::max(u, v)}))
+          continue;
+        const int t2 = edge_.get(v, u);
+        if (t2 < 0) continue;
         const int c = third(t1, u, v), d = third(t2, v, u);
-        if (angle_at(P(c), P(u), P(v)) + angle_at(P(d), P(u), P(v)) <= pi + 1e-9) continue;
+        if (!opposite_angles_exceed(P(c), P(d), P(u), P(v), pi + 1e-9)) continue;
         if (!(orient(u, d, c) > 0 && orient(d, v, c) > 0)) continue;
         clear_tri(t1);
         clear_tri(t2);
@@ -269,11 +341,12 @@ void FaceTriangulator::run(const FaceConstraints& c, std::vector<std::array<int,
   if (add_crossings(segs)) segs = split_at_points(segs);
 
   tri_.clear();
-  edge_.clear();
+  edge_.reset(int(ids_.size()));
   tri_.push_back({-1, -1, -1});
   set_tri(0, 0, 1, 2);
   for (int p = 3; p < int(ids_.size()); ++p) insert_point(p);
   for (const auto& s : segs) recover(s[0], s[1]);
+  segs_ = std::move(segs);  // sorted and unique (split_at_points)
   improve();
   for (const auto& v : tri_) out.push_back({ids_[v[0]], ids_[v[1]], ids_[v[2]]});
 }
@@ -283,7 +356,8 @@ void FaceTriangulator::run(const FaceConstraints& c, std::vector<std::array<int,
 int triangulate_face(PointTable& points, const std::array<int, 3>& corners, const FaceConstraints& c,
                      std::vector<std::array<int, 3>>& out) {
   const size_t before = out.size();
-  FaceTriangulator(points, corners).run(c, out);
+  thread_local EdgeTable edges;  // its buffer is reused by every face
+  FaceTriangulator(points, corners, edges).run(c, out);
   return int(out.size() - before);
 }
 

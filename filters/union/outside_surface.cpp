@@ -131,10 +131,18 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     const QPoint& W = points[sub[s][(z + 1) % 3]];
     const QPoint& X = points[sub[s][(z + 2) % 3]];
     auto third = [&](int side) -> const QPoint& { return points[sub[side / 3][(side % 3 + 2) % 3]]; };
+    // s lies exactly in the plane of its input face and, like every piece of a
+    // re-triangulated face, has that face's orientation (the triangulation only makes
+    // and flips into strictly positive triangles): the side of s's plane a point lies
+    // on is its side of the input face's plane. Decided there, on exact doubles of a
+    // proper triangle, instead of on the (often sliver) piece's rational corners.
+    const auto& input = soup.face[sub_face[s]];
+    const QPoint A = make_point(soup.vertex[input[0]]), B = make_point(soup.vertex[input[1]]),
+                 C = make_point(soup.vertex[input[2]]);
     auto quadrant = [&](int side) {
       // Pieces of the same input face lie in one plane, on opposite sides of the edge.
       if (sub_face[side / 3] == sub_face[s]) return 1;
-      const int o = orient3d(U, W, X, third(side));
+      const int o = orient3d(A, B, C, third(side));
       if (o > 0) return 0;
       if (o < 0) return 2;
       return perpendicular_dot_sign(U, W, X, third(side)) < 0 ? 1 : 3;

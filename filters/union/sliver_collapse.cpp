@@ -4,6 +4,7 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "union/exact.h"
 #include "union/face_clearance.h"
 
 namespace mr::surface_union {
@@ -117,6 +118,13 @@ private:
     new_pos_.push_back(q);
   }
   bool stays_clear();
+  /// The proposed move takes v out of its star and fans the star's faces from a ring
+  /// vertex that stays put: when the star lies exactly in one plane and every old and
+  /// new face turns the same way in it, the fan covers the same polygon (a fan from a
+  /// boundary vertex with all triangles positive sweeps the interior angle once), so
+  /// the surface stays where it was and cannot meet anything new, unless a vertex of
+  /// another sheet sits exactly at v (bodies touching there), which is looked up.
+  bool flat_star_refilled(int v);
   /// Moves x (whose live faces are fx) to `at` if that stays clear of the faces nearby.
   bool move_vertex(int x, const std::vector<int>& fx, const V3& at);
   void live_faces(int v, std::vector<int>& out) const {
@@ -135,7 +143,7 @@ private:
   std::vector<char> cut_;
   std::vector<std::vector<int>> vf_;
   FaceGrid grid_;  // where the faces are now, for the crossing checks
-  std::vector<int> replaced_, near_;
+  std::vector<int> replaced_, near_, scratch_at_v_;
   std::vector<std::array<V3, 2>> scratch_boxes_;
   std::vector<std::array<int, 3>> new_ids_;
   std::vector<std::array<V3, 3>> new_pos_;
@@ -195,6 +203,36 @@ bool Collapser::stays_clear() {
   for (size_t i = 0; i < new_ids_.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       if (triangles_meet(new_ids_[i], new_pos_[i].data(), new_ids_[j], new_pos_[j].data())) return false;
+  return true;
+}
+
+bool Collapser::flat_star_refilled(int v) {
+  if (replaced_.empty()) return false;
+  const auto& ref = r_.faces[replaced_[0]];
+  const V3 a = P(ref[0]), b = P(ref[1]), c = P(ref[2]);
+  for (int f : replaced_)
+    for (int x : r_.faces[f])
+      if (orient3d(a.data(), b.data(), c.data(), P(x).data()) != 0) return false;
+  const V3 n = cross(sub3(b, a), sub3(c, a));
+  int k = 0;
+  for (int t = 1; t < 3; ++t)
+    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  auto turn = [&](const V3& p, const V3& q, const V3& r) { return orient2d(p.data(), q.data(), r.data(), i, j); };
+  const int s = turn(a, b, c);
+  if (s == 0) return false;
+  for (int f : replaced_) {
+    const auto& t = r_.faces[f];
+    if (turn(P(t[0]), P(t[1]), P(t[2])) != s) return false;
+  }
+  for (const auto& q : new_pos_)
+    if (turn(q[0], q[1], q[2]) != s) return false;
+  const V3 pv = P(v);
+  grid_.near(pv, pv, scratch_at_v_);
+  for (int g : scratch_at_v_)
+    if (alive_[g])
+      for (int y : r_.faces[g])
+        if (y != v && P(y) == pv) return false;
   return true;
 }
 
@@ -325,7 +363,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   if (moved)
     for (int f : fw)
       if (std::find(r_.faces[f].begin(), r_.faces[f].end(), v) == r_.faces[f].end()) propose(f, w, w, target);
-  if (!stays_clear()) return false;
+  if (!(!moved && flat_star_refilled(v)) && !stays_clear()) return false;
   const double budget_before = volume_budget_;
   volume_budget_ -= std::fabs(dv) / 6;
   for (int x : nv) changed_[x] = 1;
@@ -408,7 +446,8 @@ bool Collapser::try_flip(int f, int z) {
   replaced_ = {f, g};
   new_ids_ = {{u, d, c}, {d, v, c}};
   new_pos_ = {{P(u), P(d), P(c)}, {P(d), P(v), P(c)}};
-  if (!stays_clear()) return false;
+  // A flat convex quad (CAD plates) covers the same place after the flip: nothing to check.
+  if (!flat_convex_quad(P(u), P(v), P(c), P(d)) && !stays_clear()) return false;
   r_.faces[f] = {u, d, c};
   r_.faces[g] = {d, v, c};
   angle_[f] = angle_[g] = -1;

@@ -23,6 +23,9 @@ public:
   /// point or along a segment, shared vertices and edges, and coplanar overlap.
   bool intersect(int f, int g, std::unordered_map<int, FaceConstraints>& cf);
 
+  /// Room for about `crossings` edge-face crossings in the cache.
+  void reserve(size_t crossings) { edge_face_cache_.reserve(crossings); }
+
   int edge_face_points() const { return int(edge_face_cache_.size()); }
 
 private:

@@ -146,6 +146,20 @@ TEST(UnionClearance, TrianglesMeetOnlyBeyondWhatTheyShare) {
   EXPECT_FALSE(triangles_meet(f, F, {1, 0, 13}, N));
 }
 
+TEST(UnionClearance, FlatConvexQuadOnlyWhenExactlyFlatAndConvex) {
+  // Faces (u, v, c) and (v, u, d) on the plane z = 0.5, the diagonals crossing inside.
+  const V3 u{0, 0, 0.5}, v{1, 1, 0.5}, c{0, 1, 0.5}, d{1, 0, 0.5};
+  EXPECT_TRUE(flat_convex_quad(u, v, c, d));
+  // d pushed to the reflex side: the new diagonal would leave the quad.
+  EXPECT_FALSE(flat_convex_quad(u, v, c, V3{0.4, 0.6, 0.5}));
+  // d on the line of (u, c): not strictly convex.
+  EXPECT_FALSE(flat_convex_quad(u, v, c, V3{0, -1, 0.5}));
+  // d 1e-16 off the plane: the flip moves the surface (a little).
+  EXPECT_FALSE(flat_convex_quad(u, v, c, V3{1, 0, 0.5 + 1e-16}));
+  // Tilted but exactly flat (small integers): accepted.
+  EXPECT_TRUE(flat_convex_quad(V3{0, 0, 0}, V3{1, 1, 2}, V3{0, 1, 1}, V3{1, 0, 1}));
+}
+
 TEST(UnionClearance, GridFindsFacesAtTheirNewPlace) {
   std::vector<V3> v{{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0}, {5, 5, 5}, {5.1, 5, 5}, {5, 5.1, 5}, {-10, 0, 0}, {10, 0, 0}, {0, 10, 0}};
   std::vector<std::array<int, 3>> f{{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};  // small, small far away, large
