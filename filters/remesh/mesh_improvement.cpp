@@ -1,5 +1,6 @@
 #include "remesh/mesh_improvement.h"
 
+#include "remesh/defect_reduction.h"
 #include "remesh/face_rings.h"
 #include "remesh/triangle_geometry.h"
 
@@ -191,8 +192,10 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
   for (const auto& f : out.faces) worst = std::min(worst, face_min_angle(out, f));
   const double floor = std::max(worst, kValenceFloor);
   for (int it = 0; it < iterations; ++it) {
-    const int swaps = swap_pass(out, fixed, region) + valence_pass(out, fixed, region, floor);
-    const int moves = smooth_pass(out, locator, movable);
+    int swaps = swap_pass(out, fixed, region) + valence_pass(out, fixed, region, floor);
+    const DefectReductionResult dr = reduce_valence_defects(out, fixed, locator, region, movable, floor);
+    swaps += dr.swaps;
+    const int moves = smooth_pass(out, locator, movable) + dr.moves;
     r.swaps += swaps;
     r.moves += moves;
     if (swaps == 0 && moves == 0) break;
