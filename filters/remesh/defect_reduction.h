@@ -1,9 +1,11 @@
 // Removes valence defects that single edge swaps cannot: the irregular points the front leaves
 // where fronts meet are mostly adjacent 5-7 pairs (dislocations), and two such pairs close
-// together annihilate only through a short sequence of swaps whose faces are poor until the
-// points around them move. So a sequence of up to two swaps that lowers the valence deviation
-// is tried with the free points around it smoothed (projected onto the input) and kept only when
-// its faces stay above min(their old smallest angle, `floor`); otherwise everything is undone.
+// together annihilate only through a short sequence of swaps (glides of a pair, each keeping the
+// deviation, then one lowering it) whose faces are poor until the points around them move. So a
+// sequence of up to four swaps that lowers the valence deviation is tried with the free points
+// around it smoothed (projected onto the input) and kept only when its faces stay above
+// min(their old smallest angle, `floor`) and their mean smallest angle barely drops; otherwise
+// everything is undone.
 #pragma once
 
 #include "remesh/output_mesh.h"
@@ -19,6 +21,7 @@ struct DefectReductionResult {
   int sequences = 0;  ///< swap sequences kept
   int swaps = 0;      ///< swaps in them
   int moves = 0;      ///< points the smoothing of kept sequences moved
+  int tried = 0;      ///< sequences smoothed and judged
 };
 
 /// `fixed`: undirected edge keys (OutputMesh::edge_key) never swapped. Only sequences touching a

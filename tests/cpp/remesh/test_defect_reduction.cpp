@@ -123,8 +123,9 @@ TEST(RemeshDefectReduction, RemovesDefectsSeededBySwapsAndKeepsPointsOnTheSurfac
     EXPECT_EQ(out.points[v][2], 0.0);  // on the input plane, inside the square
     EXPECT_GE(std::min(out.points[v][0], out.points[v][1]), 0.0);
     EXPECT_LE(std::max(out.points[v][0], out.points[v][1]), 1.0);
-    if (out.kind[v] != PointKind::Free)  // border points stay
+    if (out.kind[v] != PointKind::Free) {  // border points stay
       EXPECT_EQ(out.points[v], Point3(double(v % (kN + 1)) / kN, double(v / (kN + 1)) / kN, 0));
+    }
   }
   // Every edge has one or two faces and no face repeats.
   std::map<std::pair<int, int>, int> edge_faces;
