@@ -1,5 +1,6 @@
 #include "remesh/defect_reduction.h"
 
+#include "remesh/side_faces.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
@@ -46,26 +47,23 @@ struct FaceChange {
   std::array<int, 3> before;
 };
 
-std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
-
 class DefectReducer {
 public:
   DefectReducer(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const SurfaceLocator& locator,
                 const std::vector<char>& movable, double floor)
       : out_(out), fixed_(fixed), locator_(locator), movable_(movable), floor_(floor),
-        vertex_faces_(out.points.size()), valence_(out.points.size(), 0), ideal_(out.points.size(), 6) {
-    side_face_.reserve(out.faces.size() * 3);
-    for (size_t f = 0; f < out.faces.size(); ++f) {
-      for (int z = 0; z < 3; ++z) side_face_[directed(out.faces[f][z], out.faces[f][(z + 1) % 3])] = int(f);
+        sides_(out.faces), vertex_faces_(out.points.size()), valence_(out.points.size(), 0),
+        ideal_(out.points.size(), 6) {
+    for (size_t f = 0; f < out.faces.size(); ++f)
       for (int v : out.faces[f]) vertex_faces_[v].push_back(int(f));
-    }
     // Valence = distinct edges; a point on an open border wants 4 (as the valence swaps do).
-    for (const auto& [key, f] : side_face_) {
-      const int a = int(key >> 32), b = int(key & 0xffffffffu);
-      const bool border = !side_face_.count(directed(b, a));
-      if (border || a < b) valence_[a]++, valence_[b]++;
-      if (border) ideal_[a] = ideal_[b] = 4;
-    }
+    for (const auto& F : out.faces)
+      for (int z = 0; z < 3; ++z) {
+        const int a = F[z], b = F[(z + 1) % 3];
+        const bool border = sides_.face_of(b, a) < 0;
+        if (border || a < b) valence_[a]++, valence_[b]++;
+        if (border) ideal_[a] = ideal_[b] = 4;
+      }
   }
 
   DefectReductionResult run(const std::vector<char>& region) {
@@ -95,17 +93,11 @@ private:
 
   // Side z of face f as a swap, when that swap keeps the mesh manifold.
   bool quad_of(int f, int z, Quad& q) const {
-    const auto& F = out_.faces[f];
-    q.f = f, q.x = F[z], q.y = F[(z + 1) % 3], q.c = F[(z + 2) % 3];
-    if (fixed_.count(OutputMesh::edge_key(q.x, q.y))) return false;
-    const auto it = side_face_.find(directed(q.y, q.x));
-    if (it == side_face_.end()) return false;
-    q.g = it->second;
-    if (out_.face_patch[q.g] != out_.face_patch[f]) return false;
-    q.d = -1;
-    for (int v : out_.faces[q.g]) if (v != q.x && v != q.y) q.d = v;
-    if (q.d < 0 || q.d == q.c || valence_[q.x] <= 3 || valence_[q.y] <= 3) return false;
-    if (side_face_.count(directed(q.c, q.d)) || side_face_.count(directed(q.d, q.c))) return false;
+    FacePair p;
+    if (!sides_.swappable_pair(out_, f, z, p)) return false;
+    q.f = p.f, q.g = p.g, q.x = p.x, q.y = p.y, q.c = p.c, q.d = p.d;
+    if (fixed_.count(OutputMesh::edge_key(q.x, q.y)) || out_.face_patch[q.g] != out_.face_patch[f]) return false;
+    if (valence_[q.x] <= 3 || valence_[q.y] <= 3) return false;
     q.energy_change = energy_change(q);
     return true;
   }
@@ -120,15 +112,12 @@ private:
   }
 
   void set_face(int f, const std::array<int, 3>& t) {
-    auto& F = out_.faces[f];
-    for (int z = 0; z < 3; ++z) side_face_.erase(directed(F[z], F[(z + 1) % 3]));
-    for (int v : F) {
+    for (int v : out_.faces[f]) {
       auto& list = vertex_faces_[v];
       list.erase(std::find(list.begin(), list.end(), f));
     }
-    F = t;
-    for (int z = 0; z < 3; ++z) side_face_[directed(F[z], F[(z + 1) % 3])] = f;
-    for (int v : F) vertex_faces_[v].push_back(f);
+    sides_.set_face(out_, f, t);
+    for (int v : t) vertex_faces_[v].push_back(f);
   }
 
   void apply(const Quad& q) {
@@ -311,7 +300,7 @@ private:
   const SurfaceLocator& locator_;
   const std::vector<char>& movable_;
   const double floor_;
-  std::unordered_map<std::uint64_t, int> side_face_;
+  SideFaces sides_;
   std::vector<std::vector<int>> vertex_faces_;
   std::vector<int> valence_, ideal_;
   std::vector<FaceChange> log_;

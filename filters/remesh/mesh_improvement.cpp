@@ -2,6 +2,7 @@
 
 #include "remesh/defect_reduction.h"
 #include "remesh/face_rings.h"
+#include "remesh/side_faces.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
@@ -13,8 +14,7 @@ namespace mr::remesh {
 
 namespace {
 
-std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
-std::uint64_t undirected(int a, int b) { return directed(std::min(a, b), std::max(a, b)); }
+std::uint64_t undirected(int a, int b) { return SideFaces::undirected(a, b); }
 
 // Valence swaps may lower a face pair's smallest angle down to this (radians), never below the
 // mesh's worst angle.
@@ -45,48 +45,28 @@ struct SwapCandidate {
 template <class Wanted>
 int swap_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const std::vector<char>& region,
                Wanted&& wanted) {
-  std::unordered_map<std::uint64_t, int> side_face;  // directed side -> face
-  side_face.reserve(out.faces.size() * 3);
-  for (size_t f = 0; f < out.faces.size(); ++f)
-    for (int z = 0; z < 3; ++z) side_face[directed(out.faces[f][z], out.faces[f][(z + 1) % 3])] = int(f);
+  SideFaces sides(out.faces);
   int swaps = 0;
   for (size_t fi = 0; fi < out.faces.size(); ++fi) {
     if (!region[out.faces[fi][0]] && !region[out.faces[fi][1]] && !region[out.faces[fi][2]]) continue;
     for (int z = 0; z < 3; ++z) {
-      const auto F = out.faces[fi];
-      const int x = F[z], y = F[(z + 1) % 3], c = F[(z + 2) % 3];
-      if (fixed.count(undirected(x, y))) continue;
-      auto it = side_face.find(directed(y, x));
-      if (it == side_face.end()) continue;
-      const int gi = it->second;
-      if (out.face_patch[gi] != out.face_patch[fi]) continue;
-      const auto G = out.faces[gi];
-      int d = -1;
-      for (int k = 0; k < 3; ++k) if (G[k] != x && G[k] != y) d = G[k];
-      if (d < 0 || d == c) continue;
-      if (side_face.count(directed(c, d)) || side_face.count(directed(d, c))) continue;
+      FacePair p;
+      if (!sides.swappable_pair(out, int(fi), z, p)) continue;
+      const int x = p.x, y = p.y, c = p.c, d = p.d;
+      if (fixed.count(undirected(x, y)) || out.face_patch[p.g] != out.face_patch[fi]) continue;
       const Point3 nf = unit_normal(out.points[x], out.points[y], out.points[c]);
       const Point3 ng = unit_normal(out.points[y], out.points[x], out.points[d]);
       if (nf * ng < 0.9) continue;  // keep the surface shape: swap only nearly flat pairs
       Point3 n = nf + ng;
       n.Normalize();
-      const std::array<int, 3> A = {x, d, c}, B = {d, y, c};
       const Point3 na = unit_normal(out.points[x], out.points[d], out.points[c]);
       const Point3 nb = unit_normal(out.points[d], out.points[y], out.points[c]);
       if (na * n < 0.9 || nb * n < 0.9) continue;
-      const SwapCandidate cand{x, y, c, d, std::min(face_min_angle(out, F), face_min_angle(out, G)),
+      const std::array<int, 3> A = {x, d, c}, B = {d, y, c};
+      const SwapCandidate cand{x, y, c, d, std::min(face_min_angle(out, out.faces[fi]), face_min_angle(out, out.faces[p.g])),
                                std::min(face_min_angle(out, A), face_min_angle(out, B))};
       if (!wanted(cand)) continue;
-      for (int k = 0; k < 3; ++k) {
-        side_face.erase(directed(F[k], F[(k + 1) % 3]));
-        side_face.erase(directed(G[k], G[(k + 1) % 3]));
-      }
-      out.faces[fi] = A;
-      out.faces[gi] = B;
-      for (int k = 0; k < 3; ++k) {
-        side_face[directed(A[k], A[(k + 1) % 3])] = int(fi);
-        side_face[directed(B[k], B[(k + 1) % 3])] = gi;
-      }
+      sides.swap(out, p);
       ++swaps;
     }
   }

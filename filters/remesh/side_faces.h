@@ -41,14 +41,26 @@ public:
 
   /// Swaps the pair's diagonal x-y to c-d: faces (x, d, c) and (d, y, c).
   void swap(OutputMesh& out, const FacePair& p) {
-    for (int face : {p.f, p.g})
-      for (int k = 0; k < 3; ++k) face_.erase(directed(out.faces[face][k], out.faces[face][(k + 1) % 3]));
-    out.faces[p.f] = {p.x, p.d, p.c};
-    out.faces[p.g] = {p.d, p.y, p.c};
-    for (int face : {p.f, p.g})
-      for (int k = 0; k < 3; ++k) face_[directed(out.faces[face][k], out.faces[face][(k + 1) % 3])] = face;
+    set_face(out, p.f, {p.x, p.d, p.c});
+    set_face(out, p.g, {p.d, p.y, p.c});
   }
 
+  /// Face f becomes t (a swap, or undoing one).
+  void set_face(OutputMesh& out, int f, const std::array<int, 3>& t) {
+    auto& F = out.faces[f];
+    for (int k = 0; k < 3; ++k) {
+      auto it = face_.find(directed(F[k], F[(k + 1) % 3]));
+      if (it != face_.end() && it->second == f) face_.erase(it);
+    }
+    F = t;
+    for (int k = 0; k < 3; ++k) face_[directed(F[k], F[(k + 1) % 3])] = f;
+  }
+
+  /// The face holding directed side a->b, or -1.
+  int face_of(int a, int b) const {
+    auto it = face_.find(directed(a, b));
+    return it == face_.end() ? -1 : it->second;
+  }
   bool has_edge(int a, int b) const { return face_.count(directed(a, b)) || face_.count(directed(b, a)); }
 
   static std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
