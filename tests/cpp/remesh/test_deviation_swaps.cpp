@@ -1,6 +1,7 @@
 // Swaps towards the surface: a face pair whose diagonal cuts across a crease of the input turns
 // to the diagonal along it; flat pairs and feature edges stay.
 #include "remesh/deviation_swaps.h"
+#include "remesh/side_faces.h"
 #include "remesh/triangle_geometry.h"
 
 #include <gtest/gtest.h>
@@ -89,4 +90,40 @@ TEST(DeviationSwaps, PairsNearTheSurfaceStay) {
   out.points[2] = Point3(0.5, -0.1, 0.9 * kRoof);
   out.points[3] = Point3(0.5, 0.1, 0.9 * kRoof);
   EXPECT_EQ(swap_towards_surface(out, {}, roof.locator, roof.size), 0);
+}
+
+TEST(SideFaces, SwapsAndUndoKeepEverySideWithItsFace) {
+  // A fan of 6 faces around point 0 (a hexagon): swap each spoke that can be, undo half of them,
+  // and after every step each directed side must map to the face that has it.
+  OutputMesh out;
+  out.add_point(Point3(0, 0, 0), 0, PointKind::Free);
+  for (int k = 0; k < 6; ++k) out.add_point(Point3(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0), 0, PointKind::Free);
+  for (int k = 0; k < 6; ++k) out.faces.push_back({0, 1 + k, 1 + (k + 1) % 6});
+  out.face_patch.assign(6, 0);
+  SideFaces sides(out.faces);
+  auto consistent = [&] {
+    for (size_t f = 0; f < out.faces.size(); ++f)
+      for (int z = 0; z < 3; ++z)
+        if (sides.face_of(out.faces[f][z], out.faces[f][(z + 1) % 3]) != int(f)) return false;
+    return true;
+  };
+  int swapped = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int z = 0; z < 3; ++z) {
+      FacePair p;
+      if (!sides.swappable_pair(out, f, z, p)) continue;
+      const auto before_f = out.faces[p.f], before_g = out.faces[p.g];
+      sides.swap(out, p);
+      ++swapped;
+      ASSERT_TRUE(consistent());
+      EXPECT_TRUE(sides.has_edge(p.c, p.d));
+      EXPECT_FALSE(sides.has_edge(p.x, p.y));
+      if (swapped % 2 == 0) {  // undo
+        sides.set_face(out, p.f, before_f);
+        sides.set_face(out, p.g, before_g);
+        ASSERT_TRUE(consistent());
+        EXPECT_TRUE(sides.has_edge(p.x, p.y));
+      }
+    }
+  EXPECT_GT(swapped, 1);
 }
