@@ -15,14 +15,16 @@ V3 cross(const V3& a, const V3& b) {
 }
 
 /// Segment (p, q) meets the closed triangle (a, b, c) (exact; coplanar counts as a hit).
-bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+/// sp and sq are the exact sides of p and q of the triangle's plane,
+/// orient3d(a, b, c, p) and orient3d(a, b, c, q): the caller has them already (the
+/// plane sides that decided the pair so far), and recomputing them was a third of
+/// this test's cost on CAD creases, where they are zero.
+bool segment_meets_triangle(const V3& p, const V3& q, int sp, int sq, const V3& a, const V3& b, const V3& c) {
   // Boxes apart (exact comparisons): no predicate needed. The segment is often a side
   // lying in the plane of a long face, far from this triangle's part of it.
   for (int k = 0; k < 3; ++k)
     if (std::max(p[k], q[k]) < std::min({a[k], b[k], c[k]}) || std::min(p[k], q[k]) > std::max({a[k], b[k], c[k]}))
       return false;
-  const int sp = orient3d(a.data(), b.data(), c.data(), p.data());
-  const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
   if (sp * sq > 0) return false;
   if (sp == 0 && sq == 0) {  // coplanar: closed segment against closed triangle in 2D
     const V3 n = cross(sub3(b, a), sub3(c, a));
@@ -200,7 +202,7 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
     // B touches A's plane from one side (faces along a crease): only its corner or
     // side in the plane can meet A.
     if (shared == 0 && (pos == 0 || neg == 0) && (zero == 1 || zero == 2))
-      return segment_meets_triangle(B[on[0]], B[on[zero - 1]], A[0], A[1], A[2]);
+      return segment_meets_triangle(B[on[0]], B[on[zero - 1]], 0, 0, A[0], A[1], A[2]);
     // The same with a shared corner s: B's side (s, x) in A's plane meets A beyond s
     // exactly when it leaves s into A's corner sector (seen across A's largest normal
     // component, where A is not degenerate).
@@ -222,13 +224,20 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
   if (!projection_tried &&
       (separated_in_projection(F, G, cf, cg, kf) || (kg != kf && separated_in_projection(F, G, cf, cg, kg))))
     return false;
+  // The side tests below take the corners' exact plane sides: sides[0] are G's of
+  // F's plane, sides[1] F's of G's (the loop above may have stopped before G's plane).
+  resolve_plane_sides(F, G, sides[0]);
+  resolve_plane_sides(G, F, sides[1]);
+  auto f_side_meets_g = [&](int e, int e1) {
+    return segment_meets_triangle(F[e], F[e1], sides[1][e], sides[1][e1], G[0], G[1], G[2]);
+  };
+  auto g_side_meets_f = [&](int e, int e1) {
+    return segment_meets_triangle(G[e], G[e1], sides[0][e], sides[0][e1], F[0], F[1], F[2]);
+  };
   if (shared == 1)  // only the edges opposite the shared corner can cross the other face
-    return segment_meets_triangle(F[(sf + 1) % 3], F[(sf + 2) % 3], G[0], G[1], G[2]) ||
-           segment_meets_triangle(G[(sg + 1) % 3], G[(sg + 2) % 3], F[0], F[1], F[2]);
+    return f_side_meets_g((sf + 1) % 3, (sf + 2) % 3) || g_side_meets_f((sg + 1) % 3, (sg + 2) % 3);
   for (int e = 0; e < 3; ++e)
-    if (segment_meets_triangle(F[e], F[(e + 1) % 3], G[0], G[1], G[2]) ||
-        segment_meets_triangle(G[e], G[(e + 1) % 3], F[0], F[1], F[2]))
-      return true;
+    if (f_side_meets_g(e, (e + 1) % 3) || g_side_meets_f(e, (e + 1) % 3)) return true;
   return false;
 }
 
