@@ -198,15 +198,7 @@ mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int 
   return (b.q(i) - a.q(i)) * (c.q(j) - a.q(j)) - (b.q(j) - a.q(j)) * (c.q(i) - a.q(i));
 }
 
-int orient2d(const double* a, const double* b, const double* c, int i, int j) {
-  const double bx = b[i] - a[i], by = b[j] - a[j];
-  const double cx = c[i] - a[i], cy = c[j] - a[j];
-  const double l = bx * cy, r = by * cx;
-  const double det = l - r;
-  // Shewchuk's bound for this evaluation is 3.3e-16 (|l| + |r|); 1e-15 is generous.
-  const double bound = 1e-15 * (std::fabs(l) + std::fabs(r));
-  if (det > bound) return 1;
-  if (det < -bound) return -1;
+int orient2d_unfiltered(const double* a, const double* b, const double* c, int i, int j) {
   // Collinear points on axis-parallel lines (common in CAD): exactly zero.
   if ((a[i] == b[i] && a[i] == c[i]) || (a[j] == b[j] && a[j] == c[j])) return 0;
   auto same = [&](const double* p, const double* q) { return p[i] == q[i] && p[j] == q[j]; };
