@@ -88,22 +88,7 @@ int perpendicular_dot_integer_sign(const double* u, const double* w, const doubl
 
 }  // namespace
 
-int orient3d(const double* a, const double* b, const double* c, const double* d) {
-  // Points on one axis-aligned plane (common in CAD models): exactly coplanar.
-  for (int k = 0; k < 3; ++k)
-    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return 0;
-  const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
-  const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
-  const double dx = d[0] - a[0], dy = d[1] - a[1], dz = d[2] - a[2];
-  const double t1 = cy * dz, t2 = cz * dy, t3 = cx * dz, t4 = cz * dx, t5 = cx * dy, t6 = cy * dx;
-  const double det = bx * (t1 - t2) - by * (t3 - t4) + bz * (t5 - t6);
-  const double perm = std::fabs(bx) * (std::fabs(t1) + std::fabs(t2)) + std::fabs(by) * (std::fabs(t3) + std::fabs(t4)) +
-                      std::fabs(bz) * (std::fabs(t5) + std::fabs(t6));
-  // Shewchuk's bound for this evaluation order is 7.8e-16 * perm; the differences
-  // themselves are rounded too, so we use a generous 1e-14 (the fallback is exact).
-  const double bound = 1e-14 * perm;
-  if (det > bound) return 1;
-  if (det < -bound) return -1;
+int orient3d_unfiltered(const double* a, const double* b, const double* c, const double* d) {
   // Two equal points (a corner tested against its own face): zero without integers.
   auto same = [](const double* p, const double* q) { return p[0] == q[0] && p[1] == q[1] && p[2] == q[2]; };
   if (same(d, a) || same(d, b) || same(d, c) || same(a, b) || same(a, c) || same(b, c)) return 0;
@@ -198,15 +183,7 @@ mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int 
   return (b.q(i) - a.q(i)) * (c.q(j) - a.q(j)) - (b.q(j) - a.q(j)) * (c.q(i) - a.q(i));
 }
 
-int orient2d(const double* a, const double* b, const double* c, int i, int j) {
-  const double bx = b[i] - a[i], by = b[j] - a[j];
-  const double cx = c[i] - a[i], cy = c[j] - a[j];
-  const double l = bx * cy, r = by * cx;
-  const double det = l - r;
-  // Shewchuk's bound for this evaluation is 3.3e-16 (|l| + |r|); 1e-15 is generous.
-  const double bound = 1e-15 * (std::fabs(l) + std::fabs(r));
-  if (det > bound) return 1;
-  if (det < -bound) return -1;
+int orient2d_unfiltered(const double* a, const double* b, const double* c, int i, int j) {
   // Collinear points on axis-parallel lines (common in CAD): exactly zero.
   if ((a[i] == b[i] && a[i] == c[i]) || (a[j] == b[j] && a[j] == c[j])) return 0;
   auto same = [&](const double* p, const double* q) { return p[i] == q[i] && p[j] == q[j]; };

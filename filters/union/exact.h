@@ -6,6 +6,7 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <cmath>
 #include <memory>
 
 namespace mr::surface_union {
@@ -48,13 +49,50 @@ QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z);
 QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
 bool same_point(const QPoint& a, const QPoint& b);
 
+/// orient3d below where its floating-point filter cannot decide: exact (equal points,
+/// integers).
+int orient3d_unfiltered(const double* a, const double* b, const double* c, const double* d);
+
 /// Sign of the signed volume of tetrahedron (a,b,c,d) for double inputs: +1 when d
 /// lies on the side of plane (a,b,c) its normal (b-a)x(c-a) points away from... i.e.
-/// the sign of det[b-a, c-a, d-a]. Exact.
-int orient3d(const double* a, const double* b, const double* c, const double* d);
+/// the sign of det[b-a, c-a, d-a]. Exact. The filter is inline, as orient2d's below:
+/// the clearance checks call it for every face pair they cannot separate otherwise.
+inline int orient3d(const double* a, const double* b, const double* c, const double* d) {
+  // Points on one axis-aligned plane (common in CAD models): exactly coplanar.
+  for (int k = 0; k < 3; ++k)
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return 0;
+  const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
+  const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
+  const double dx = d[0] - a[0], dy = d[1] - a[1], dz = d[2] - a[2];
+  const double t1 = cy * dz, t2 = cz * dy, t3 = cx * dz, t4 = cz * dx, t5 = cx * dy, t6 = cy * dx;
+  const double det = bx * (t1 - t2) - by * (t3 - t4) + bz * (t5 - t6);
+  const double perm = std::fabs(bx) * (std::fabs(t1) + std::fabs(t2)) + std::fabs(by) * (std::fabs(t3) + std::fabs(t4)) +
+                      std::fabs(bz) * (std::fabs(t5) + std::fabs(t6));
+  // Shewchuk's bound for this evaluation order is 7.8e-16 * perm; the differences
+  // themselves are rounded too, so we use a generous 1e-14 (the fallback is exact).
+  const double bound = 1e-14 * perm;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return orient3d_unfiltered(a, b, c, d);
+}
+
+/// orient2d below where its floating-point filter cannot decide: exact (integers).
+int orient2d_unfiltered(const double* a, const double* b, const double* c, int i, int j);
 
 /// Sign of det[b-a, c-a] of the projections of double points on axes (i, j). Exact.
-int orient2d(const double* a, const double* b, const double* c, int i, int j);
+/// The filter is inline: the clearance checks and the re-triangulation call this
+/// about a million times on a CAD model, and the filter decides nearly all of them.
+inline int orient2d(const double* a, const double* b, const double* c, int i, int j) {
+  const double bx = b[i] - a[i], by = b[j] - a[j];
+  const double cx = c[i] - a[i], cy = c[j] - a[j];
+  const double l = bx * cy, r = by * cx;
+  const double det = l - r;
+  // Shewchuk's bound for this evaluation is 3.3e-16 (|l| + |r|); 1e-15 is generous.
+  const double bound = 1e-15 * (std::fabs(l) + std::fabs(r));
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return orient2d_unfiltered(a, b, c, i, j);
+}
 
 /// Sign of det[b-a, c-a, d-a] for rational points (filter on the doubles, exact fallback).
 int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d);

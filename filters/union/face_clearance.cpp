@@ -14,44 +14,59 @@ V3 cross(const V3& a, const V3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
+/// Closed segment (p, q) against the closed triangle (a, b, c) in their common plane,
+/// seen across the triangle's largest normal component. Each 2D orientation is taken
+/// once: a corner-inside test and the side-crossing tests share o(x, y, p) and
+/// o(x, y, q) for the triangle's sides (x, y), and neighbouring sides share o(p, q, x);
+/// 10 predicates where the tests one by one took up to 19 (CAD creases run this often).
+bool coplanar_segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+  const V3 n = cross(sub3(b, a), sub3(c, a));
+  int k = 0;
+  for (int t = 1; t < 3; ++t)
+    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  // Doubles are exact inputs: the filtered 2D orientation with an integer fallback.
+  auto o = [&](const V3& x, const V3& y, const V3& z) { return orient2d(x.data(), y.data(), z.data(), i, j); };
+  const int sign = o(a, b, c);  // orientation of the triangle in this projection
+  const V3* T[3] = {&a, &b, &c};
+  int side_p[3], side_q[3];  // o(T[e], T[e + 1], p) and the same for q
+  for (int e = 0; e < 3; ++e) {
+    side_p[e] = o(*T[e], *T[(e + 1) % 3], p);
+    side_q[e] = o(*T[e], *T[(e + 1) % 3], q);
+  }
+  auto inside = [&](const int* side) { return sign * side[0] >= 0 && sign * side[1] >= 0 && sign * side[2] >= 0; };
+  if (inside(side_p) || inside(side_q)) return true;
+  auto on_segment = [&](const V3& x, const V3& y, const V3& z) {  // z on closed xy, collinear
+    for (int m : {i, j})
+      if (std::min(x[m], y[m]) > z[m] || std::max(x[m], y[m]) < z[m]) return false;
+    return true;
+  };
+  int across[3];  // o(p, q, T[e])
+  for (int e = 0; e < 3; ++e) across[e] = o(p, q, *T[e]);
+  for (int e = 0; e < 3; ++e) {
+    const V3 &X = *T[e], &Y = *T[(e + 1) % 3];
+    const int o1 = across[e], o2 = across[(e + 1) % 3], o3 = side_p[e], o4 = side_q[e];
+    if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+    if ((o1 == 0 && on_segment(p, q, X)) || (o2 == 0 && on_segment(p, q, Y)) || (o3 == 0 && on_segment(X, Y, p)) ||
+        (o4 == 0 && on_segment(X, Y, q)))
+      return true;
+  }
+  return false;
+}
+
 /// Segment (p, q) meets the closed triangle (a, b, c) (exact; coplanar counts as a hit).
-bool segment_meets_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+/// sp and sq are the exact sides of p and q of the triangle's plane,
+/// orient3d(a, b, c, p) and orient3d(a, b, c, q): the caller has them already (the
+/// plane sides that decided the pair so far), and recomputing them was a third of
+/// this test's cost on CAD creases, where they are zero.
+bool segment_meets_triangle(const V3& p, const V3& q, int sp, int sq, const V3& a, const V3& b, const V3& c) {
   // Boxes apart (exact comparisons): no predicate needed. The segment is often a side
   // lying in the plane of a long face, far from this triangle's part of it.
   for (int k = 0; k < 3; ++k)
     if (std::max(p[k], q[k]) < std::min({a[k], b[k], c[k]}) || std::min(p[k], q[k]) > std::max({a[k], b[k], c[k]}))
       return false;
-  const int sp = orient3d(a.data(), b.data(), c.data(), p.data());
-  const int sq = orient3d(a.data(), b.data(), c.data(), q.data());
   if (sp * sq > 0) return false;
-  if (sp == 0 && sq == 0) {  // coplanar: closed segment against closed triangle in 2D
-    const V3 n = cross(sub3(b, a), sub3(c, a));
-    int k = 0;
-    for (int t = 1; t < 3; ++t)
-      if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
-    const Projection pr{(k + 1) % 3, (k + 2) % 3};
-    // Doubles are exact inputs: the filtered 2D orientation with an integer fallback.
-    auto o = [&](const V3& x, const V3& y, const V3& z) { return orient2d(x.data(), y.data(), z.data(), pr.i, pr.j); };
-    const int sign = o(a, b, c);  // orientation of the triangle in this projection
-    const V3 &P = p, &Q = q, &A = a, &B = b, &C = c;
-    auto inside = [&](const V3& x) { return sign * o(A, B, x) >= 0 && sign * o(B, C, x) >= 0 && sign * o(C, A, x) >= 0; };
-    if (inside(P) || inside(Q)) return true;
-    auto on_segment = [&](const V3& x, const V3& y, const V3& z) {  // z on closed xy, collinear
-      for (int k : {pr.i, pr.j})
-        if (std::min(x[k], y[k]) > z[k] || std::max(x[k], y[k]) < z[k]) return false;
-      return true;
-    };
-    const V3* T[3] = {&A, &B, &C};
-    for (int e = 0; e < 3; ++e) {
-      const V3 &X = *T[e], &Y = *T[(e + 1) % 3];
-      const int o1 = o(P, Q, X), o2 = o(P, Q, Y), o3 = o(X, Y, P), o4 = o(X, Y, Q);
-      if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-      if ((o1 == 0 && on_segment(P, Q, X)) || (o2 == 0 && on_segment(P, Q, Y)) || (o3 == 0 && on_segment(X, Y, P)) ||
-          (o4 == 0 && on_segment(X, Y, Q)))
-        return true;
-    }
-    return false;
-  }
+  if (sp == 0 && sq == 0) return coplanar_segment_meets_triangle(p, q, a, b, c);
   const int s1 = orient3d(p.data(), q.data(), a.data(), b.data());
   const int s2 = orient3d(p.data(), q.data(), b.data(), c.data());
   const int s3 = orient3d(p.data(), q.data(), c.data(), a.data());
@@ -200,7 +215,7 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
     // B touches A's plane from one side (faces along a crease): only its corner or
     // side in the plane can meet A.
     if (shared == 0 && (pos == 0 || neg == 0) && (zero == 1 || zero == 2))
-      return segment_meets_triangle(B[on[0]], B[on[zero - 1]], A[0], A[1], A[2]);
+      return segment_meets_triangle(B[on[0]], B[on[zero - 1]], 0, 0, A[0], A[1], A[2]);
     // The same with a shared corner s: B's side (s, x) in A's plane meets A beyond s
     // exactly when it leaves s into A's corner sector (seen across A's largest normal
     // component, where A is not degenerate).
@@ -222,13 +237,20 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
   if (!projection_tried &&
       (separated_in_projection(F, G, cf, cg, kf) || (kg != kf && separated_in_projection(F, G, cf, cg, kg))))
     return false;
+  // The side tests below take the corners' exact plane sides: sides[0] are G's of
+  // F's plane, sides[1] F's of G's (the loop above may have stopped before G's plane).
+  resolve_plane_sides(F, G, sides[0]);
+  resolve_plane_sides(G, F, sides[1]);
+  auto f_side_meets_g = [&](int e, int e1) {
+    return segment_meets_triangle(F[e], F[e1], sides[1][e], sides[1][e1], G[0], G[1], G[2]);
+  };
+  auto g_side_meets_f = [&](int e, int e1) {
+    return segment_meets_triangle(G[e], G[e1], sides[0][e], sides[0][e1], F[0], F[1], F[2]);
+  };
   if (shared == 1)  // only the edges opposite the shared corner can cross the other face
-    return segment_meets_triangle(F[(sf + 1) % 3], F[(sf + 2) % 3], G[0], G[1], G[2]) ||
-           segment_meets_triangle(G[(sg + 1) % 3], G[(sg + 2) % 3], F[0], F[1], F[2]);
+    return f_side_meets_g((sf + 1) % 3, (sf + 2) % 3) || g_side_meets_f((sg + 1) % 3, (sg + 2) % 3);
   for (int e = 0; e < 3; ++e)
-    if (segment_meets_triangle(F[e], F[(e + 1) % 3], G[0], G[1], G[2]) ||
-        segment_meets_triangle(G[e], G[(e + 1) % 3], F[0], F[1], F[2]))
-      return true;
+    if (f_side_meets_g(e, (e + 1) % 3) || g_side_meets_f(e, (e + 1) % 3)) return true;
   return false;
 }
 

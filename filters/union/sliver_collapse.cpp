@@ -16,6 +16,10 @@ constexpr double kPi = 3.14159265358979323846;
 // normal (CAD creases of 90 degrees are not; sphere meshes and blobs are).
 constexpr double kSmoothStarCos = 0.7;
 
+/// Vertex x is a corner of face t. Written out: std::find on the three corners was an
+/// out-of-line call, run a few hundred thousand times by the collapse candidates.
+inline bool has_corner(const std::array<int, 3>& t, int x) { return t[0] == x || t[1] == x || t[2] == x; }
+
 V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 V3 cross(const V3& a, const V3& b) {
@@ -247,7 +251,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   // Link condition: v and w share exactly the two opposite vertices of their two faces.
   int shared_faces = 0;
   for (int f : fv)
-    if (std::find(r_.faces[f].begin(), r_.faces[f].end(), w) != r_.faces[f].end()) ++shared_faces;
+    if (has_corner(r_.faces[f], w)) ++shared_faces;
   if (shared_faces != 2) return false;
   std::vector<int>& nv = scratch_nv_;  // one-rings (unique; marked, no sorting)
   std::vector<int>& nw = scratch_nw_;
@@ -282,8 +286,8 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   for (int pass = 0; pass < 2; ++pass)
     for (int f : pass == 0 ? fv : fw) {
       const auto& t = r_.faces[f];
-      const bool has_v = std::find(t.begin(), t.end(), v) != t.end();
-      const bool has_w = std::find(t.begin(), t.end(), w) != t.end();
+      const bool has_v = has_corner(t, v);
+      const bool has_w = has_corner(t, w);
       if (pass == 1 && has_v) continue;  // counted with v's faces
       s_old += det(rel(t[0]), rel(t[1]), rel(t[2]));
       if (has_v && has_w) continue;  // dies
@@ -306,8 +310,8 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
       if (pass == 1 && !moves_w) break;  // w's other faces keep their shape
       for (int f : pass == 0 ? fv : fw) {
         const auto& t = r_.faces[f];
-        const bool has_v = std::find(t.begin(), t.end(), v) != t.end();
-        const bool has_w = std::find(t.begin(), t.end(), w) != t.end();
+        const bool has_v = has_corner(t, v);
+        const bool has_w = has_corner(t, w);
         if (pass == 1 && has_v) continue;
         const double a0 = min_angle(f);
         if (pass == 0) before = std::min(before, a0);
@@ -357,12 +361,12 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   start_move();
   for (int f : fv) {
     const auto& t = r_.faces[f];
-    if (std::find(t.begin(), t.end(), w) != t.end()) replaced_.push_back(f);  // dies
+    if (has_corner(t, w)) replaced_.push_back(f);  // dies
     else propose(f, v, w, target);
   }
   if (moved)
     for (int f : fw)
-      if (std::find(r_.faces[f].begin(), r_.faces[f].end(), v) == r_.faces[f].end()) propose(f, w, w, target);
+      if (!has_corner(r_.faces[f], v)) propose(f, w, w, target);
   if (!(!moved && flat_star_refilled(v)) && !stays_clear()) return false;
   const double budget_before = volume_budget_;
   volume_budget_ -= std::fabs(dv) / 6;
@@ -375,7 +379,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   const std::vector<int> link = nv;  // copies: compensate() reuses the scratch vectors
   for (int f : fv) {
     auto& t = r_.faces[f];
-    if (std::find(t.begin(), t.end(), w) != t.end()) {
+    if (has_corner(t, w)) {
       alive_[f] = 0;
       grid_.remove(f);
       continue;
@@ -424,7 +428,7 @@ bool Collapser::try_flip(int f, int z) {
   for (int x : r_.faces[g])
     if (x != u && x != v) d = x;
   for (int h : vf_[c])  // the new edge must not exist already
-    if (alive_[h] && std::find(r_.faces[h].begin(), r_.faces[h].end(), d) != r_.faces[h].end()) return false;
+    if (alive_[h] && has_corner(r_.faces[h], d)) return false;
   const V3 n_f = cross(sub3(P(v), P(u)), sub3(P(c), P(u)));
   const V3 n_g = cross(sub3(P(u), P(v)), sub3(P(d), P(v)));
   const V3 n1 = cross(sub3(P(d), P(u)), sub3(P(c), P(u)));
