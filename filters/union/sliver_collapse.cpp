@@ -101,6 +101,11 @@ private:
   /// stays the same (perpendicular to its star's volume gradient), when that raises the
   /// worst angle of its faces and flips none.
   bool try_relocate(int x);
+  /// A triple point next to sliver corner c (a junction j joined to c by a line edge)
+  /// moves onto c: the wedge between two lines leaving j is where their vertices come
+  /// too close to collapse (j is a third common neighbour); after the move they are
+  /// consecutive on one line and can slide together.
+  bool try_junction_slide(int c);
   // A move proposes the faces it would change (new corners and positions) and lists
   // the faces it replaces; stays_clear() checks them exactly against each other and
   // every other live face nearby before the move is applied.
@@ -241,9 +246,12 @@ bool Collapser::flat_star_refilled(int v) {
 }
 
 bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
-  // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2.
+  // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2, or,
+  // where two lines pass closer than a sliver allows (bodies nearly touching on a third one),
+  // join a vertex w of the other line: the lines then meet at w.
   const bool vw_line = line_.count(ekey(v, w)) > 0;
-  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] == 2)) return false;
+  const bool joins_line = line_degree_[v] == 2 && !vw_line && line_degree_[w] > 0;
+  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] >= 2) && !joins_line) return false;
   std::vector<int>& fv = scratch_fv_;
   std::vector<int>& fw = scratch_fw_;
   live_faces(v, fv);
@@ -494,6 +502,21 @@ bool Collapser::try_flip(int f, int z) {
   return true;
 }
 
+bool Collapser::try_junction_slide(int c) {
+  if (line_degree_[c] == 0) return false;
+  std::vector<int> ring;  // c's line neighbours at junctions (copied: try_collapse reuses scratch)
+  std::vector<int>& fc = scratch_fx_;
+  live_faces(c, fc);
+  for (int f : fc)
+    for (int j : r_.faces[f])
+      if (j != c && line_degree_[j] >= 3 && line_.count(ekey(c, j)) &&
+          std::find(ring.begin(), ring.end(), j) == ring.end())
+        ring.push_back(j);
+  for (int j : ring)
+    if (try_collapse(j, c)) return true;
+  return false;
+}
+
 bool Collapser::try_relocate(int x) {
   if (line_degree_[x] > 0) return false;
   std::vector<int>& fx = scratch_fx_;
@@ -639,6 +662,8 @@ void Collapser::run_passes(double threshold) {
       // Otherwise a flip of any side may reshape the neighbourhood for a later pass.
       for (int k = 2; k >= 0 && !ok; --k)
         if (try_flip(f, edges[k].second)) { ++done; ++flips_; ok = true; }
+      for (int z = 0; z < 3 && !ok; ++z)
+        if (try_junction_slide(t[z])) { ++done; ++collapses_; ok = true; }
       // Or a corner slides towards the middle of its ring, within the surface.
       for (int z = 0; z < 3 && !ok; ++z)
         if (try_relocate(t[z])) { ++done; ok = true; }
