@@ -20,10 +20,10 @@ size_t PointTable::KeyHash::operator()(const Key& k) const {
 int PointTable::insert(QPoint&& p) {
   Key key{p.d[0] == 0 ? 0.0 : p.d[0], p.d[1] == 0 ? 0.0 : p.d[1], p.d[2] == 0 ? 0.0 : p.d[2]};
   const int id = int(points_.size());
-  auto [it, added] = index_.emplace(key, id);
+  const auto [first, added] = index_.emplace(key, id);
   if (!added) {
     int last = -1;
-    for (int i = it->second; i >= 0; i = next_[i]) {
+    for (int i = first; i >= 0; i = next_[i]) {
       if (same_point(points_[i], p)) return i;
       last = i;
     }

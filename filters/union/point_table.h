@@ -3,10 +3,10 @@
 // because equal rationals are equal: neighbouring faces share vertices exactly.
 #pragma once
 
+#include "common/flat_index_map.h"
 #include "union/exact.h"
 
 #include <array>
-#include <unordered_map>
 #include <vector>
 
 namespace mr::surface_union {
@@ -44,7 +44,7 @@ private:
   // Truncated doubles of the rationals: equal points have equal keys; the rare
   // distinct points with one key are told apart exactly. The map holds the first
   // point of a key, next_ chains the others (no allocation per key).
-  std::unordered_map<Key, int, KeyHash> index_;
+  FlatIndexMap<Key, KeyHash> index_;
   std::vector<int> next_;
   using Line = std::array<int, 2>;           // (u, w) with u < w, or (-1, -1)
   std::vector<std::array<Line, 2>> line_;  // per point: lines it is known to lie on

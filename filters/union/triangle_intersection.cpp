@@ -11,8 +11,7 @@ PairIntersector::PairIntersector(const Soup& soup, PointTable& points, const std
 int PairIntersector::edge_plane_point(int a, int b, int face) {
   if (a > b) std::swap(a, b);
   EFKey key{a, b, face};
-  auto it = edge_face_cache_.find(key);
-  if (it != edge_face_cache_.end()) return it->second;
+  if (const int* id = edge_face_cache_.find(key)) return *id;
   const auto& F = soup_.face[face];
   int id = points_.insert_on_line(edge_plane_crossing(vp(a), vp(b), vp(F[0]), vp(F[1]), vp(F[2])), vertex_point_[a],
                                   vertex_point_[b]);
@@ -167,8 +166,7 @@ int PairIntersector::edge_edge_point(int a, int b, int c, int d, const Projectio
   if (a > b) std::swap(a, b);
   if (c > d) std::swap(c, d);
   EEKey key = a < c || (a == c && b < d) ? EEKey{a, b, c, d} : EEKey{c, d, a, b};
-  auto it = edge_edge_cache_.find(key);
-  if (it != edge_edge_cache_.end()) return it->second;
+  if (const int* id = edge_edge_cache_.find(key)) return *id;
   const int id = points_.insert_on_line(segment_line_crossing(vp(a), vp(b), vp(c), vp(d), pr.i, pr.j),
                                         vertex_point_[a], vertex_point_[b]);
   points_.mark_on_line(id, vertex_point_[c], vertex_point_[d]);

@@ -4,6 +4,7 @@
 // cached by (edge, face), so the faces around an edge reuse the same point).
 #pragma once
 
+#include "common/flat_index_map.h"
 #include "union/point_table.h"
 #include "union/soup.h"
 
@@ -49,7 +50,7 @@ private:
       return size_t(h ^ (h >> 31));
     }
   };
-  std::unordered_map<EFKey, int, EFHash> edge_face_cache_;
+  FlatIndexMap<EFKey, EFHash> edge_face_cache_;
   /// The crossing of coplanar input edges (a, b) and (c, d), built once (neighbouring
   /// face pairs meet the same edge crossings again).
   int edge_edge_point(int a, int b, int c, int d, const Projection& pr);
@@ -64,7 +65,7 @@ private:
       return size_t(h ^ (h >> 31));
     }
   };
-  std::unordered_map<EEKey, int, EEHash> edge_edge_cache_;
+  FlatIndexMap<EEKey, EEHash> edge_edge_cache_;
 };
 
 }  // namespace mr::surface_union
