@@ -118,8 +118,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
 
   // 2. Exact intersections.
   t = Clock::now();
-  std::unordered_map<int, FaceConstraints> cf;
-  cf.reserve(std::min(soup.face.size(), 2 * pairs.size() / 5));  // cut faces: ~1/6 of the pairs
+  CutFaces cf(soup.face.size());
   PairIntersector intersector(soup, pts, vertex_point);
   intersector.reserve(pairs.size() / 4);  // crossings: ~1/5 of the pairs
   std::set<std::pair<int, int>> body_pairs;
@@ -142,25 +141,25 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   for (int f = 0; f < int(soup.face.size()); ++f) {
     const std::array<int, 3> corners{vertex_point[soup.face[f][0]], vertex_point[soup.face[f][1]],
                                      vertex_point[soup.face[f][2]]};
-    auto it = cf.find(f);
+    const FaceConstraints* it = cf.find(f);
     const size_t first = sub.size();
-    if (it == cf.end()) sub.push_back(corners);
+    if (!it) sub.push_back(corners);
     else {
-      triangulate_face(pts, corners, it->second, sub);
+      triangulate_face(pts, corners, *it, sub);
       ++r.cut_faces;
     }
     for (size_t s = first; s < sub.size(); ++s) {
       sub_body.push_back(soup.body[f]);
       sub_face.push_back(f);
-      sub_cut.push_back(it != cf.end());
+      sub_cut.push_back(it != nullptr);
       char drop = 0;
       int copy_body = -1;
-      if (it != cf.end() && !it->second.coplanar.empty()) {
+      if (it && !it->coplanar.empty()) {
         const Projection pr = face_projection(pts[corners[0]], pts[corners[1]], pts[corners[2]]);
         const QPoint &a = pts[sub[s][0]], &b = pts[sub[s][1]], &c = pts[sub[s][2]];
         const QPoint centroid = make_point((a.q(0) + b.q(0) + c.q(0)) / 3, (a.q(1) + b.q(1) + c.q(1)) / 3,
                                            (a.q(2) + b.q(2) + c.q(2)) / 3);
-        for (int g : it->second.coplanar) {
+        for (int g : it->coplanar) {
           if (!strictly_inside(pts, vertex_point, soup, g, centroid, pr)) continue;
           const auto& G = soup.face[g];
           const bool same = orient2d(pts[vertex_point[G[0]]], pts[vertex_point[G[1]]], pts[vertex_point[G[2]]], pr.i,

@@ -117,7 +117,7 @@ bool PairIntersector::sections_surely_apart(int f, const int* st, int g, const i
   return lo[0] > hi[1] || lo[1] > hi[0];
 }
 
-bool PairIntersector::intersect(int f, int g, std::unordered_map<int, FaceConstraints>& cf) {
+bool PairIntersector::intersect(int f, int g, CutFaces& cf) {
   const auto& T = soup_.face[f];
   const auto& X = soup_.face[g];
   int sx[3], st[3];
@@ -174,7 +174,7 @@ int PairIntersector::edge_edge_point(int a, int b, int c, int d, const Projectio
   return id;
 }
 
-bool PairIntersector::coplanar(int f, int g, std::unordered_map<int, FaceConstraints>& cf) {
+bool PairIntersector::coplanar(int f, int g, CutFaces& cf) {
   const auto& T = soup_.face[f];
   const auto& X = soup_.face[g];
   // Input vertices only: all predicates run on the doubles (exact with the integer

@@ -9,7 +9,6 @@
 #include "union/soup.h"
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace mr::surface_union {
@@ -22,7 +21,7 @@ public:
   /// Intersects faces f and g and appends what each receives to `cf[f]` and `cf[g]`.
   /// Returns true if they share at least one point. Handles crossing, touching at a
   /// point or along a segment, shared vertices and edges, and coplanar overlap.
-  bool intersect(int f, int g, std::unordered_map<int, FaceConstraints>& cf);
+  bool intersect(int f, int g, CutFaces& cf);
 
   /// Room for about `crossings` edge-face crossings in the cache.
   void reserve(size_t crossings) { edge_face_cache_.reserve(crossings); }
@@ -32,7 +31,7 @@ public:
 private:
   int edge_plane_point(int a, int b, int face);
   void plane_section(int f, const int sign[3], int other, std::vector<int>& out);
-  bool coplanar(int f, int g, std::unordered_map<int, FaceConstraints>& cf);
+  bool coplanar(int f, int g, CutFaces& cf);
   bool sections_surely_apart(int f, const int* st, int g, const int* sx) const;
   const double* vp(int v) const { return soup_.vertex[v].data(); }
 
