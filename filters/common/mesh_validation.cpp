@@ -2,7 +2,11 @@
 
 #include "common/errors.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace mr {
 
@@ -24,6 +28,29 @@ void require_triangle_surface(const TriMesh& mesh, const std::string& what) {
     throw InvalidInput(what + " has NaN or infinite vertex coordinates: remove them first "
                        "(Cleaning and Repairing > Remove Unreferenced/Duplicate Vertices does not; "
                        "fix or delete those vertices)");
+}
+
+int count_duplicate_faces(const TriMesh& mesh) {
+  std::vector<std::array<int, 3>> keys;
+  keys.reserve(mesh.face.size());
+  for (const auto& f : mesh.face) {
+    std::array<int, 3> k;
+    for (int z = 0; z < 3; ++z) k[z] = int(vcg::tri::Index(mesh, f.cV(z)));
+    std::sort(k.begin(), k.end());
+    keys.push_back(k);
+  }
+  std::sort(keys.begin(), keys.end());
+  int duplicates = 0;
+  for (size_t i = 1; i < keys.size(); ++i) duplicates += keys[i] == keys[i - 1];
+  return duplicates;
+}
+
+void require_no_duplicate_faces(const TriMesh& mesh, const std::string& what) {
+  if (const int n = count_duplicate_faces(mesh))
+    throw InvalidInput(what + " has " + std::to_string(n) +
+                       " duplicate faces (the same three vertices as another face, a double layer whose "
+                       "edges are all non-manifold): remove them first (Cleaning and Repairing > Remove "
+                       "Duplicate Faces)");
 }
 
 }  // namespace mr

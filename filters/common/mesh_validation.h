@@ -14,4 +14,11 @@ void require_triangle_surface(const TriMesh& mesh, const std::string& what = "th
 /// True if every coordinate of every vertex is finite.
 bool has_finite_coordinates(const TriMesh& mesh);
 
+/// Faces whose three vertices another face already has (in any order or orientation).
+int count_duplicate_faces(const TriMesh& mesh);
+
+/// \throw InvalidInput if some faces repeat another face's three vertices: a double
+///        layer of zero thickness, whose every edge is non-manifold.
+void require_no_duplicate_faces(const TriMesh& mesh, const std::string& what = "the input mesh");
+
 }  // namespace mr
