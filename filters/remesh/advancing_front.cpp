@@ -228,6 +228,7 @@ bool PatchMesher::valid_triangle(int a, int b, const Point3& q, int q_id, const 
                                  const TangentFrame& side_frame, double h, double min_angle_rad,
                                  const std::vector<int>& near_points) const {
   checks_ += long(near_points.size()) + 1;
+  if (params_.checks_left) *params_.checks_left -= long(near_points.size()) + 1;
   const Point3 &pa = out_.points[a], &pb = out_.points[b];
   // The plane of the checks averages the side's and the candidate's surface normals, so a
   // candidate just around a tight bend is still seen ahead of the side.
@@ -585,7 +586,11 @@ FrontResult PatchMesher::run(std::vector<FrontSide> front) {
   if (front_.empty()) seed_triangle();
   const double limit = 20.0 * (estimated_faces() + double(sides_.size())) + 1000.0;
   while (!queue_.empty()) {
-    if (++result_.iterations > limit || checks_ > kChecksPerStep * limit) { result_.iteration_limit = true; break; }
+    if (++result_.iterations > limit || checks_ > kChecksPerStep * limit ||
+        (params_.checks_left && *params_.checks_left <= 0)) {
+      result_.iteration_limit = true;
+      break;
+    }
     const auto [priority, s] = queue_.top();
     queue_.pop();
     (void)priority;

@@ -29,6 +29,9 @@ struct FrontParams {
   /// Faces of the output already there around a hole being meshed again: new faces may neither
   /// cover them nor repeat their edges.
   std::vector<int> meshed_faces;
+  /// Work left for the whole run (every front, repairs and retries included), counted like each
+  /// front's own bound; a front stops when it is spent. Null: no run-wide bound.
+  long* checks_left = nullptr;
 };
 
 /// Directed front side a->b: the unmeshed part of the patch lies to its left (seen from the

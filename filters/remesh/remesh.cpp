@@ -114,6 +114,20 @@ std::vector<double> small_feature_caps(const TriMesh& mesh, const features::Resu
   return cap;
 }
 
+// Work bound of the whole run, shared by every front (repairs and retries included): nearby
+// points looked at by the candidate checks, per face the size field expects.
+constexpr double kChecksPerExpectedFace = 500.0;
+long run_check_budget(const Surface& s, const SizeField& size) {
+  double faces = 0;
+  for (size_t f = 0; f < s.faces.size(); ++f) {
+    const auto& t = s.faces[f];
+    const double area = 0.5 * ((s.points[t[1]] - s.points[t[0]]) ^ (s.points[t[2]] - s.points[t[0]])).Norm();
+    const double h = std::max(size.at(int(f), {1.0 / 3, 1.0 / 3, 1.0 / 3}), 1e-300);
+    faces += area / (0.25 * std::sqrt(3.0) * h * h);
+  }
+  return long(std::min(kChecksPerExpectedFace * (faces + 1000.0), 1e17));
+}
+
 // Local repair: the faces within kRepairRadius x target of the open sides, pinched points and
 // oversized faces are taken out and the hole is meshed again at kRepairScale x the size, up to
 // kRepairRounds times, each around what the last left. A round that does not reduce the trouble,
@@ -258,10 +272,12 @@ Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   result.feature_edges = int(ff.feature_edges.size());
 
   result.merged_lines = ff.merged_lines;
+  long checks_left = run_check_budget(surface, size);
   for (int patch = 0; patch < fr.patch_count; ++patch) {
     if (ff.dropped_patch[patch]) continue;  // a sliver between twin lines: nothing fits in it
     progress(params, 15 + int(65.0 * patch / std::max(fr.patch_count, 1)), "Advancing the front");
     FrontParams fp_patch;
+    fp_patch.checks_left = &checks_left;
     fp_patch.thin_patch = ff.thin_patch[patch] != 0;
     result.thin_patches += fp_patch.thin_patch ? 1 : 0;
     const FrontResult r = mesh_patch(out, ff.patch_front[patch], patch, locator, size, fp_patch, params.target_length, result);

@@ -196,6 +196,32 @@ TEST(RemeshPieces, AdvancingFrontFillsASquare) {
   EXPECT_NEAR(area, 1.0, 1e-9);
 }
 
+TEST(RemeshPieces, RunWideWorkBudgetStopsTheFrontsAndIsShared) {
+  // The whole square needs about 230 faces; a budget spent after a few candidate checks stops
+  // the front with the limit reported, and a second front given the spent budget does nothing.
+  const test::UnitSquare sq(0.1);
+  long checks_left = 50;
+  FrontParams fp;
+  fp.checks_left = &checks_left;
+  OutputMesh out;
+  const FrontResult r = advance_front(out, test::UnitSquare::boundary(out), 0, sq.locator, sq.size, fp);
+  EXPECT_TRUE(r.iteration_limit);
+  EXPECT_GT(r.unmeshed_sides, 0);
+  EXPECT_LE(checks_left, 0);
+  EXPECT_LT(r.faces, 50);
+  OutputMesh out2;
+  const FrontResult r2 = advance_front(out2, test::UnitSquare::boundary(out2), 0, sq.locator, sq.size, fp);
+  EXPECT_TRUE(r2.iteration_limit);
+  EXPECT_EQ(r2.faces, 0);
+  // With room to spare the same square is filled and the budget is charged for it.
+  checks_left = 1000000;
+  OutputMesh out3;
+  const FrontResult r3 = advance_front(out3, test::UnitSquare::boundary(out3), 0, sq.locator, sq.size, fp);
+  EXPECT_EQ(r3.unmeshed_sides, 0);
+  EXPECT_FALSE(r3.iteration_limit);
+  EXPECT_LT(checks_left, 1000000);
+}
+
 TEST(RemeshPieces, FrontThatCannotCloseTerminatesAndReports) {
   // The square's boundary run clockwise puts the "unmeshed" side outside the patch: the front
   // can place nothing valid there and must stop with its sides reported, not loop.
