@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <utility>
 
 namespace mr::surface_union {
@@ -14,8 +15,18 @@ int sign_of(const mpq_class& v) { return sgn(v); }
 
 }  // namespace
 
-QPoint::QPoint(const QPoint& o) : d(o.d), exact_double(o.exact_double), canonical_(o.canonical_) {
-  if (o.q_) q_ = std::make_unique<std::array<mpq_class, 3>>(*o.q_);
+namespace {
+// Lazy rationals of points shared by threads: a few locks, picked by address.
+std::mutex& lock_of(const void* p) {
+  static std::mutex locks[64];
+  return locks[(reinterpret_cast<uintptr_t>(p) >> 4) % 64];
+}
+}  // namespace
+
+QPoint::QPoint(const QPoint& o) : d(o.d), exact_double(o.exact_double) {
+  if (!o.q_.load(std::memory_order_acquire)) return;
+  o.q(0);  // canonical (and complete) before it is read
+  q_.store(new std::array<mpq_class, 3>(*o.q_.load(std::memory_order_acquire)), std::memory_order_relaxed);
 }
 
 QPoint& QPoint::operator=(const QPoint& o) {
@@ -24,12 +35,23 @@ QPoint& QPoint::operator=(const QPoint& o) {
 }
 
 const mpq_class& QPoint::q(int k) const {
-  if (!q_) q_ = std::make_unique<std::array<mpq_class, 3>>(std::array<mpq_class, 3>{mpq_class(d[0]), mpq_class(d[1]), mpq_class(d[2])});
-  if (!canonical_) {
-    for (auto& c : *q_) c.canonicalize();
-    canonical_ = true;
+  const auto* q = q_.load(std::memory_order_acquire);
+  if (q && canonical_.load(std::memory_order_acquire)) return (*q)[k];
+  return q_slow(k);
+}
+
+const mpq_class& QPoint::q_slow(int k) const {
+  std::lock_guard<std::mutex> lock(lock_of(this));
+  auto* q = q_.load(std::memory_order_acquire);
+  if (!q) {
+    q = new std::array<mpq_class, 3>{mpq_class(d[0]), mpq_class(d[1]), mpq_class(d[2])};
+    q_.store(q, std::memory_order_release);
   }
-  return (*q_)[k];
+  if (!canonical_.load(std::memory_order_acquire)) {
+    for (auto& c : *q) c.canonicalize();
+    canonical_.store(true, std::memory_order_release);
+  }
+  return (*q)[k];
 }
 
 QPoint make_point(const std::array<double, 3>& p) {
@@ -49,11 +71,11 @@ QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z) {
 
 QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z) {
   QPoint r;
-  r.q_ = std::make_unique<std::array<mpq_class, 3>>();
-  (*r.q_)[0] = std::move(x);
-  (*r.q_)[1] = std::move(y);
-  (*r.q_)[2] = std::move(z);
-  for (int k = 0; k < 3; ++k) r.d[k] = (*r.q_)[k].get_d();
+  auto& q = r.own_q();
+  q[0] = std::move(x);
+  q[1] = std::move(y);
+  q[2] = std::move(z);
+  for (int k = 0; k < 3; ++k) r.d[k] = q[k].get_d();
   return r;
 }
 
@@ -374,9 +396,9 @@ QPoint crossing_from_integers(mpz_class& oa, mpz_class& ob, const mpz_class* A, 
   }
   if (e < 0) mpz_mul_2exp(den.get_mpz_t(), den.get_mpz_t(), -e);  // once for the three coordinates
   QPoint r;
-  r.q_ = std::make_unique<std::array<mpq_class, 3>>();
+  auto& q = r.own_q();
   for (int k = 0; k < 3; ++k) {
-    mpq_class& c = (*r.q_)[k];
+    mpq_class& c = q[k];
     mpz_ptr num = c.get_num_mpz_t();
     mpz_mul(num, oa.get_mpz_t(), B[k].get_mpz_t());  // no temporaries
     mpz_submul(num, ob.get_mpz_t(), A[k].get_mpz_t());

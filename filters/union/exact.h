@@ -6,6 +6,7 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <memory>
 
@@ -23,10 +24,21 @@ public:
   bool exact_double = false;
 
   QPoint() = default;
+  ~QPoint() { delete q_.load(std::memory_order_relaxed); }
   QPoint(const QPoint& o);
   QPoint& operator=(const QPoint& o);
-  QPoint(QPoint&&) noexcept = default;
-  QPoint& operator=(QPoint&&) noexcept = default;
+  QPoint(QPoint&& o) noexcept
+      : d(o.d), exact_double(o.exact_double), q_(o.q_.exchange(nullptr, std::memory_order_relaxed)),
+        canonical_(o.canonical_.load(std::memory_order_relaxed)) {}
+  QPoint& operator=(QPoint&& o) noexcept {
+    if (this != &o) {
+      d = o.d;
+      exact_double = o.exact_double;
+      delete q_.exchange(o.q_.exchange(nullptr, std::memory_order_relaxed), std::memory_order_relaxed);
+      canonical_.store(o.canonical_.load(std::memory_order_relaxed), std::memory_order_relaxed);
+    }
+    return *this;
+  }
 
   /// Exact coordinate k (canonical).
   const mpq_class& q(int k) const;
@@ -39,8 +51,15 @@ QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint edge_plane_crossing(const double*, const double*, const double*, const double*, const double*);
   friend QPoint crossing_from_integers(mpz_class&, mpz_class&, const mpz_class*, const mpz_class*, int);
-  mutable std::unique_ptr<std::array<mpq_class, 3>> q_;
-  mutable bool canonical_ = true;
+  // Built or put in canonical form on first use, possibly by several threads reading
+  // the same point at once: the first one does it under a lock and publishes it.
+  const mpq_class& q_slow(int k) const;
+  std::array<mpq_class, 3>& own_q() {
+    if (!q_.load(std::memory_order_relaxed)) q_.store(new std::array<mpq_class, 3>(), std::memory_order_relaxed);
+    return *q_.load(std::memory_order_relaxed);
+  }
+  mutable std::atomic<std::array<mpq_class, 3>*> q_{nullptr};
+  mutable std::atomic<bool> canonical_{true};
 };
 
 QPoint make_point(const std::array<double, 3>& p);

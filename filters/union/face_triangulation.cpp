@@ -60,21 +60,27 @@ private:
 
 class FaceTriangulator {
 public:
-  FaceTriangulator(PointTable& points, const std::array<int, 3>& corners, EdgeTable& edges)
-      : pts_(points), pr_(face_projection(points[corners[0]], points[corners[1]], points[corners[2]])), edge_(edges) {
+  FaceTriangulator(const PointTable& points, const std::array<int, 3>& corners, EdgeTable& edges,
+                   std::vector<FaceCrossing>& crossings)
+      : pts_(points), pr_(face_projection(points[corners[0]], points[corners[1]], points[corners[2]])), edge_(edges),
+        crossings_(crossings) {
     for (int c : corners) ids_.push_back(c);
   }
 
   void run(const FaceConstraints& c, std::vector<std::array<int, 3>>& out);
 
 private:
-  const QPoint& P(int local) const { return pts_[ids_[local]]; }
+  // ids_ >= 0: point-table index; -1 - k: crossings_[k] (not in the table yet).
+  const QPoint& P(int local) const {
+    const int id = ids_[local];
+    return id >= 0 ? pts_[id] : crossings_[size_t(-1 - id)].point;
+  }
   int orient(int a, int b, int c) const {
     // The filter decides most; where it cannot, edge crossings known to lie on their
     // edge need no exact arithmetic.
     const int s = orient2d_filter(P(a), P(b), P(c), pr_.i, pr_.j);
     if (s != 2) return s;
-    if (pts_.known_collinear(ids_[a], ids_[b], ids_[c])) return 0;
+    if (ids_[a] >= 0 && ids_[b] >= 0 && ids_[c] >= 0 && pts_.known_collinear(ids_[a], ids_[b], ids_[c])) return 0;
     return orient2d(P(a), P(b), P(c), pr_.i, pr_.j);
   }
   /// The boxes of segments (a, b) and (u, v) are apart in the projection (strictly on
@@ -99,13 +105,14 @@ private:
   void clear_tri(int t);
   int new_tri() { tri_.push_back({-1, -1, -1}); return int(tri_.size()) - 1; }
 
-  PointTable& pts_;
+  const PointTable& pts_;
   Projection pr_;
   std::vector<int> ids_;  // local -> point-table index
   std::unordered_map<int, int> local_of_;
   std::vector<std::array<int, 3>> tri_;
   EdgeTable& edge_;  // directed edge -> triangle
   std::vector<std::array<int, 2>> segs_;  // the constraints (min, max), sorted: never flipped
+  std::vector<FaceCrossing>& crossings_;
 };
 
 bool FaceTriangulator::in_box(int p, int a, int b) const {
@@ -163,10 +170,16 @@ bool FaceTriangulator::add_crossings(const std::vector<std::array<int, 2>>& segs
       if (!crosses(a, b, c, d)) continue;
       const mpq_class oa = orient2d_exact(P(c), P(d), P(a), pr_.i, pr_.j);
       const mpq_class ob = orient2d_exact(P(c), P(d), P(b), pr_.i, pr_.j);
-      // The crossing lies on both segments: recorded, so splitting them needs no arithmetic.
-      const int id = pts_.insert_on_line(lerp(P(a), P(b), oa / (oa - ob)), ids_[a], ids_[b]);
-      pts_.mark_on_line(id, ids_[c], ids_[d]);
-      if (!local_of_.count(id)) {
+      // Every crossing is recorded (with the lines it lies on, so splitting segments at
+      // it needs no arithmetic later); one equal to a point the face already has adds
+      // no local point.
+      QPoint q = lerp(P(a), P(b), oa / (oa - ob));
+      int existing = -1;
+      for (int l = 0; l < int(ids_.size()) && existing < 0; ++l)
+        if (same_point(P(l), q)) existing = l;
+      crossings_.push_back({std::move(q), ids_[a], ids_[b], ids_[c], ids_[d]});
+      if (existing < 0) {
+        const int id = -int(crossings_.size());
         local_of_[id] = int(ids_.size());
         ids_.push_back(id);
       }
@@ -353,12 +366,36 @@ void FaceTriangulator::run(const FaceConstraints& c, std::vector<std::array<int,
 
 }  // namespace
 
+void triangulate_face(const PointTable& points, const std::array<int, 3>& corners, const FaceConstraints& c,
+                      FaceTriangles& out) {
+  out.triangles.clear();
+  out.crossings.clear();
+  thread_local EdgeTable edges;  // its buffer is reused by every face of the thread
+  FaceTriangulator(points, corners, edges, out.crossings).run(c, out.triangles);
+}
+
+void commit_face(PointTable& points, FaceTriangles& face, std::vector<std::array<int, 3>>& out) {
+  // The same calls, in the same order, as if each crossing had gone into the table when
+  // it was found: equal crossings get the same index, every line is marked.
+  std::vector<int> id(face.crossings.size());
+  for (size_t k = 0; k < face.crossings.size(); ++k) {
+    FaceCrossing& x = face.crossings[k];
+    id[k] = points.insert_on_line(std::move(x.point), x.u, x.w);
+    points.mark_on_line(id[k], x.c, x.d);
+  }
+  for (auto t : face.triangles) {
+    for (int& v : t)
+      if (v < 0) v = id[size_t(-1 - v)];
+    out.push_back(t);
+  }
+}
+
 int triangulate_face(PointTable& points, const std::array<int, 3>& corners, const FaceConstraints& c,
                      std::vector<std::array<int, 3>>& out) {
-  const size_t before = out.size();
-  thread_local EdgeTable edges;  // its buffer is reused by every face
-  FaceTriangulator(points, corners, edges).run(c, out);
-  return int(out.size() - before);
+  FaceTriangles face;
+  triangulate_face(points, corners, c, face);
+  commit_face(points, face, out);
+  return int(face.triangles.size());
 }
 
 }  // namespace mr::surface_union

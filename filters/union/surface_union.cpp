@@ -1,6 +1,7 @@
 #include "union/surface_union.h"
 
 #include "common/errors.h"
+#include "common/parallel_for.h"
 #include "union/body_validation.h"
 #include "union/candidate_pairs.h"
 #include "union/face_triangulation.h"
@@ -122,11 +123,16 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   PairIntersector intersector(soup, pts, vertex_point);
   intersector.reserve(pairs.size() / 4);  // crossings: ~1/5 of the pairs
   std::set<std::pair<int, int>> body_pairs;
-  for (const auto& [f, g] : pairs)
+  std::vector<char> may_meet;
+  intersector.prepare(pairs, may_meet);
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    if (!may_meet[k]) continue;
+    const auto [f, g] = pairs[k];
     if (intersector.intersect(f, g, cf)) {
       ++r.intersecting_face_pairs;
       body_pairs.insert({std::min(soup.body[f], soup.body[g]), std::max(soup.body[f], soup.body[g])});
     }
+  }
   r.intersecting_pairs = int(body_pairs.size());
   r.time_intersect_ms = ms_since(t);
 
@@ -138,14 +144,29 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   sub.reserve(soup.face.size() + 8 * cf.size());
   std::vector<char> dropped;
   std::vector<int> kept_copy_body;  // for a dropped same-side copy: the body whose copy stays
+  auto corners_of = [&](int f) {
+    return std::array<int, 3>{vertex_point[soup.face[f][0]], vertex_point[soup.face[f][1]], vertex_point[soup.face[f][2]]};
+  };
+  // The cut faces are triangulated in parallel (the point table is only read), then
+  // committed in face order, which makes the table and the output independent of it.
+  std::vector<int> cut_list;
+  for (int f = 0; f < int(soup.face.size()); ++f)
+    if (cf.find(f)) cut_list.push_back(f);
+  std::vector<FaceTriangles> cut_triangles(cut_list.size());
+  parallel_for(cut_list.size(), 64, [&](size_t k) {
+    const int f = cut_list[k];
+    triangulate_face(pts, corners_of(f), *cf.find(f), cut_triangles[k]);
+  });
+  size_t next_cut = 0;
   for (int f = 0; f < int(soup.face.size()); ++f) {
-    const std::array<int, 3> corners{vertex_point[soup.face[f][0]], vertex_point[soup.face[f][1]],
-                                     vertex_point[soup.face[f][2]]};
+    const std::array<int, 3> corners = corners_of(f);
     const FaceConstraints* it = cf.find(f);
     const size_t first = sub.size();
     if (!it) sub.push_back(corners);
     else {
-      triangulate_face(pts, corners, *it, sub);
+      commit_face(pts, cut_triangles[next_cut], sub);
+      FaceTriangles().triangles.swap(cut_triangles[next_cut].triangles);  // freed as it goes
+      ++next_cut;
       ++r.cut_faces;
     }
     for (size_t s = first; s < sub.size(); ++s) {

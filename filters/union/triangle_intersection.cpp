@@ -1,7 +1,10 @@
 #include "union/triangle_intersection.h"
 
+#include "common/parallel_for.h"
+
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace mr::surface_union {
 
@@ -13,8 +16,10 @@ int PairIntersector::edge_plane_point(int a, int b, int face) {
   EFKey key{a, b, face};
   if (const int* id = edge_face_cache_.find(key)) return *id;
   const auto& F = soup_.face[face];
-  int id = points_.insert_on_line(edge_plane_crossing(vp(a), vp(b), vp(F[0]), vp(F[1]), vp(F[2])), vertex_point_[a],
-                                  vertex_point_[b]);
+  const int* ready = prepared_index_.find(key);
+  int id = points_.insert_on_line(ready ? std::move(prepared_[size_t(*ready)])
+                                        : edge_plane_crossing(vp(a), vp(b), vp(F[0]), vp(F[1]), vp(F[2])),
+                                  vertex_point_[a], vertex_point_[b]);
   edge_face_cache_.emplace(key, id);
   return id;
 }
@@ -117,18 +122,64 @@ bool PairIntersector::sections_surely_apart(int f, const int* st, int g, const i
   return lo[0] > hi[1] || lo[1] > hi[0];
 }
 
-bool PairIntersector::intersect(int f, int g, CutFaces& cf) {
+bool PairIntersector::may_meet(int f, int g, int sx[3], int st[3]) const {
   const auto& T = soup_.face[f];
   const auto& X = soup_.face[g];
-  int sx[3], st[3];
   for (int i = 0; i < 3; ++i) sx[i] = orient3d(vp(T[0]), vp(T[1]), vp(T[2]), vp(X[i]));
   if ((sx[0] > 0 && sx[1] > 0 && sx[2] > 0) || (sx[0] < 0 && sx[1] < 0 && sx[2] < 0)) return false;
-  if (sx[0] == 0 && sx[1] == 0 && sx[2] == 0) return coplanar(f, g, cf);
+  if (sx[0] == 0 && sx[1] == 0 && sx[2] == 0) return true;  // coplanar
   for (int i = 0; i < 3; ++i) st[i] = orient3d(vp(X[0]), vp(X[1]), vp(X[2]), vp(T[i]));
   if ((st[0] > 0 && st[1] > 0 && st[2] > 0) || (st[0] < 0 && st[1] < 0 && st[2] < 0)) return false;
   // Both triangles cross the other's plane: each section is a point or a segment on
   // the common line; the intersection is the overlap of the two sections.
-  if (sections_surely_apart(f, st, g, sx)) return false;
+  return !sections_surely_apart(f, st, g, sx);
+}
+
+void PairIntersector::prepare(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& may) {
+  may.assign(pairs.size(), 0);
+  // Per chunk of pairs, the crossings its pairs ask for (an edge that changes side of
+  // the other face's plane), then the distinct ones built in parallel.
+  constexpr size_t kChunk = 4096;
+  const size_t chunks = (pairs.size() + kChunk - 1) / kChunk;
+  std::vector<std::vector<EFKey>> wanted(chunks);
+  parallel_for(chunks, 1, [&](size_t c) {
+    for (size_t k = c * kChunk, end = std::min(pairs.size(), k + kChunk); k < end; ++k) {
+      const auto [f, g] = pairs[k];
+      int sx[3], st[3];
+      if (!may_meet(f, g, sx, st)) continue;
+      may[k] = 1;
+      if (sx[0] == 0 && sx[1] == 0 && sx[2] == 0) continue;
+      for (int side = 0; side < 2; ++side) {
+        const auto& F = soup_.face[side == 0 ? f : g];
+        const int* sign = side == 0 ? st : sx;
+        for (int i = 0; i < 3; ++i) {
+          const int j = (i + 1) % 3;
+          if (sign[i] * sign[j] < 0)
+            wanted[c].push_back({std::min(F[i], F[j]), std::max(F[i], F[j]), side == 0 ? g : f});
+        }
+      }
+    }
+  });
+  std::vector<EFKey> keys;
+  for (auto& w : wanted) keys.insert(keys.end(), w.begin(), w.end());
+  wanted.clear();
+  std::sort(keys.begin(), keys.end(), [](const EFKey& x, const EFKey& y) {
+    return std::tie(x.a, x.b, x.f) < std::tie(y.a, y.b, y.f);
+  });
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  prepared_.assign(keys.size(), QPoint());
+  prepared_index_.reserve(keys.size());
+  for (size_t k = 0; k < keys.size(); ++k) prepared_index_.emplace(keys[k], int(k));
+  parallel_for(keys.size(), 512, [&](size_t k) {
+    const auto& F = soup_.face[keys[k].f];
+    prepared_[k] = edge_plane_crossing(vp(keys[k].a), vp(keys[k].b), vp(F[0]), vp(F[1]), vp(F[2]));
+  });
+}
+
+bool PairIntersector::intersect(int f, int g, CutFaces& cf) {
+  int sx[3], st[3];
+  if (!may_meet(f, g, sx, st)) return false;
+  if (sx[0] == 0 && sx[1] == 0 && sx[2] == 0) return coplanar(f, g, cf);
   std::vector<int> a, b;
   plane_section(f, st, g, a);
   plane_section(g, sx, f, b);

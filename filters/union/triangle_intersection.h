@@ -23,6 +23,10 @@ public:
   /// point or along a segment, shared vertices and edges, and coplanar overlap.
   bool intersect(int f, int g, CutFaces& cf);
 
+  /// Decides in parallel which of `pairs` may meet (the rest cannot, and intersect()
+  /// need not see them: `may_meet` gets 0) and builds the edge-face crossings those
+  /// need, so intersect() only files them. Changes no output.
+  void prepare(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& may_meet);
   /// Room for about `crossings` edge-face crossings in the cache.
   void reserve(size_t crossings) { edge_face_cache_.reserve(crossings); }
 
@@ -50,6 +54,12 @@ private:
     }
   };
   FlatIndexMap<EFKey, EFHash> edge_face_cache_;
+  /// Crossings built by prepare(), taken by edge_plane_point() when first asked for.
+  FlatIndexMap<EFKey, EFHash> prepared_index_;
+  std::vector<QPoint> prepared_;
+  /// The first steps of intersect(): false if f and g certainly do not meet; else the
+  /// signs of each face's corners against the other's plane (coplanar: all sx zero).
+  bool may_meet(int f, int g, int sx[3], int st[3]) const;
   /// The crossing of coplanar input edges (a, b) and (c, d), built once (neighbouring
   /// face pairs meet the same edge crossings again).
   int edge_edge_point(int a, int b, int c, int d, const Projection& pr);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 using namespace mr;
@@ -186,4 +187,25 @@ TEST(UnionCases, SliverStepKeepsClosedAndWithinVolumeBudget) {
   EXPECT_GT(improved.min_angle_deg, raw.min_angle_deg);
   EXPECT_LE(std::fabs(volume(improved) / volume(raw) - 1), Params{}.sliver_max_volume_change * (1 + 1e-9));
   EXPECT_EQ(improved.lines.size(), raw.lines.size());
+}
+
+TEST(UnionCases, SameResultOnOneThreadAndOnSeveral) {
+  // The pair tests, crossings and cut-face triangulations run in parallel and are merged
+  // in a fixed order: the output must not depend on the thread count.
+  TriMesh m;
+  test::sphere(m, 3);
+  std::vector<Body> bodies;
+  for (int i = 0; i < 12; ++i)
+    bodies.push_back(make_body(m, 0.7 * std::cos(1.3 * i), 0.7 * std::sin(1.7 * i), 0.15 * i - 0.8));
+  Result one, many;
+  setenv("MESHREGRID_THREADS", "1", 1);
+  one = unite(bodies);
+  setenv("MESHREGRID_THREADS", "4", 1);
+  many = unite(bodies);
+  unsetenv("MESHREGRID_THREADS");
+  EXPECT_GT(one.cut_faces, 100);
+  EXPECT_EQ(one.vertices, many.vertices);
+  EXPECT_EQ(one.faces, many.faces);
+  EXPECT_EQ(one.line_edge, many.line_edge);
+  EXPECT_EQ(one.intersection_points, many.intersection_points);
 }

@@ -104,6 +104,39 @@ TEST(UnionTriangulation, CrossingSegmentsSplitAndTileTheFace) {
   EXPECT_EQ(out.size(), 11u);
 }
 
+TEST(UnionTriangulation, CrossingsWaitForTheCommitAndGetTheTablesIndex) {
+  // Triangulating only reads the table (faces run in parallel); the crossing is a
+  // placeholder until commit_face files it, under the index an equal point already has.
+  PointTable t;
+  const int c0 = t.insert(make_point({0, 0, 0})), c1 = t.insert(make_point({4, 0, 0})), c2 = t.insert(make_point({0, 4, 0}));
+  const int p = t.insert(make_point({1, 0.5, 0})), q = t.insert(make_point({1, 2, 0}));
+  const int r = t.insert(make_point({0.5, 1, 0})), s = t.insert(make_point({2, 1, 0}));
+  const int elsewhere = t.insert(make_point({1, 1, 0}));  // the crossing, filed by another face
+  FaceConstraints fc;
+  fc.segments = {{p, q}, {r, s}};
+  FaceTriangles face;
+  triangulate_face(t, {c0, c1, c2}, fc, face);
+  EXPECT_EQ(t.size(), 8);
+  ASSERT_EQ(face.crossings.size(), 1u);
+  int placeholders = 0;
+  for (const auto& tri : face.triangles)
+    for (int v : tri) placeholders += v == -1;
+  EXPECT_EQ(placeholders, 4);  // the crossing is a corner of the four triangles around it
+  std::vector<std::array<int, 3>> out;
+  commit_face(t, face, out);
+  EXPECT_EQ(t.size(), 8);
+  EXPECT_EQ(out.size(), 11u);
+  int at_crossing = 0;
+  for (const auto& tri : out)
+    for (int v : tri) {
+      EXPECT_GE(v, 0);
+      at_crossing += v == elsewhere;
+    }
+  EXPECT_EQ(at_crossing, 4);
+  EXPECT_TRUE(t.known_collinear(p, elsewhere, q));
+  EXPECT_TRUE(t.known_collinear(r, elsewhere, s));
+}
+
 TEST(UnionPairs, GridFindsOnlyOverlappingPairsOfDifferentBodies) {
   Soup s;
   s.body_count = 2;
