@@ -1,5 +1,6 @@
 #include "union/surface_union.h"
 
+#include "common/background_release.h"
 #include "common/errors.h"
 #include "common/parallel_for.h"
 #include "union/body_validation.h"
@@ -113,7 +114,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
 
   // 1. Candidate pairs.
   auto t = Clock::now();
-  const auto pairs = candidate_pairs(soup);
+  auto pairs = candidate_pairs(soup);
   r.candidate_pairs = int(pairs.size());
   r.time_pairs_ms = ms_since(t);
 
@@ -208,7 +209,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
 
   // 4. Outside surface.
   t = Clock::now();
-  const Classification cl = classify_outside(pts, sub, sub_body, sub_face, dropped, kept_copy_body, soup);
+  Classification cl = classify_outside(pts, sub, sub_body, sub_face, dropped, kept_copy_body, soup);
   r.orientation_conflicts = cl.orientation_conflicts;
   if (cl.orientation_conflicts > 0)
     throw AlgorithmFailure(
@@ -258,6 +259,10 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   r.faces_removed = ns - int(r.faces.size());
   r.time_classify_ms = ms_since(t);
 
+  // Nothing above is needed any more: freed beside the sliver step.
+  BackgroundRelease release;
+  release.release(bodies, soup, pts, vertex_point, pairs, cf, intersector, may_meet, sub, sub_body, sub_face, sub_cut,
+                  dropped, kept_copy_body, cut_list, cut_triangles, cl, uf, vertex_of);
   // 5. Slivers.
   t = Clock::now();
   if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,
