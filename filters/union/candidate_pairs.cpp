@@ -1,5 +1,7 @@
 #include "union/candidate_pairs.h"
 
+#include "common/parallel_for.h"
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -80,17 +82,35 @@ std::vector<std::pair<int, int>> candidate_pairs(const Soup& s) {
       for (int j = lo[1]; j <= hi[1]; ++j)
         for (int k = lo[2]; k <= hi[2]; ++k) grid[key(i, j, k)].push_back(f);
   }
-  for (auto& [cell_key, faces] : grid) {
-    for (size_t x = 0; x < faces.size(); ++x)
-      for (size_t y = x + 1; y < faces.size(); ++y) {
-        int f = faces[x], g = faces[y];
-        if (s.body[f] == s.body[g] || !box[f].overlaps(box[g])) continue;
-        // Report the pair only in the cell holding the low corner of the boxes' overlap.
-        int c[3];
-        for (int k = 0; k < 3; ++k) c[k] = cell_of(std::max(box[f].lo[k], box[g].lo[k]), k);
-        if (key(c[0], c[1], c[2]) != cell_key) continue;
-        pairs.emplace_back(std::min(f, g), std::max(f, g));
-      }
+  // The cells are independent: their pairs are found in parallel, per chunk of cells,
+  // and sorted together (the result does not depend on the order they were found in).
+  std::vector<const std::pair<const int64_t, std::vector<int>>*> cells;
+  cells.reserve(grid.size());
+  for (const auto& entry : grid) cells.push_back(&entry);
+  constexpr size_t kCellsPerChunk = 256;
+  std::vector<std::vector<std::pair<int, int>>> found((cells.size() + kCellsPerChunk - 1) / kCellsPerChunk);
+  parallel_for(found.size(), 1, [&](size_t chunk) {
+    for (size_t n = chunk * kCellsPerChunk, end = std::min(cells.size(), n + kCellsPerChunk); n < end; ++n) {
+      const int64_t cell_key = cells[n]->first;
+      const std::vector<int>& faces = cells[n]->second;
+      for (size_t x = 0; x < faces.size(); ++x)
+        for (size_t y = x + 1; y < faces.size(); ++y) {
+          const int f = faces[x], g = faces[y];
+          if (s.body[f] == s.body[g] || !box[f].overlaps(box[g])) continue;
+          // Report the pair only in the cell holding the low corner of the boxes' overlap.
+          int c[3];
+          for (int k = 0; k < 3; ++k) c[k] = cell_of(std::max(box[f].lo[k], box[g].lo[k]), k);
+          if (key(c[0], c[1], c[2]) != cell_key) continue;
+          found[chunk].emplace_back(std::min(f, g), std::max(f, g));
+        }
+    }
+  });
+  size_t total = 0;
+  for (const auto& f : found) total += f.size();
+  pairs.reserve(total);
+  for (auto& f : found) {
+    pairs.insert(pairs.end(), f.begin(), f.end());
+    std::vector<std::pair<int, int>>().swap(f);
   }
   std::sort(pairs.begin(), pairs.end());
   return pairs;
