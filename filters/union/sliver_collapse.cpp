@@ -1,5 +1,7 @@
 #include "union/sliver_collapse.h"
 
+#include "union/link_triangulation.h"
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_set>
@@ -106,6 +108,17 @@ private:
   /// too close to collapse (j is a third common neighbour); after the move they are
   /// consecutive on one line and can slide together.
   bool try_junction_slide(int c);
+  /// Removes v (free, or on one line with its two line neighbours then joined) and fills
+  /// its star with the best triangulation of its link that uses no edge the mesh already
+  /// has: where the collapse of a sliver's short edge is refused because its ends have a
+  /// third common neighbour (the link condition) or a face of the fan would turn over,
+  /// another triangulation of the same hole often exists.
+  bool try_remove_vertex(int v);
+  bool edge_exists(int a, int b) const {
+    for (int f : vf_[a])
+      if (alive_[f] && has_corner(r_.faces[f], b)) return true;
+    return false;
+  }
   // A move proposes the faces it would change (new corners and positions) and lists
   // the faces it replaces; stays_clear() checks them exactly against each other and
   // every other live face nearby before the move is applied.
@@ -517,6 +530,123 @@ bool Collapser::try_junction_slide(int c) {
   return false;
 }
 
+bool Collapser::try_remove_vertex(int v) {
+  const int ld = line_degree_[v];
+  if (ld != 0 && ld != 2) return false;
+  std::vector<int> fv;
+  live_faces(v, fv);
+  const int k = int(fv.size());
+  if (k < 3 || k > 32) return false;
+  // The link in order: each face (v, a, b) gives the link side a -> b.
+  std::vector<std::array<int, 2>> sides;
+  for (int f : fv) {
+    const auto& t = r_.faces[f];
+    for (int z = 0; z < 3; ++z)
+      if (t[z] == v) sides.push_back({t[(z + 1) % 3], t[(z + 2) % 3]});
+  }
+  std::vector<int> ring{sides[0][0]};
+  for (int step = 0; step < k; ++step) {
+    int next = -1;
+    for (const auto& sd : sides)
+      if (sd[0] == ring.back()) next = next < 0 ? sd[1] : -2;
+    if (next < 0) return false;  // not a single closed fan
+    if (step + 1 < k) {
+      if (std::find(ring.begin(), ring.end(), next) != ring.end()) return false;
+      ring.push_back(next);
+    } else if (next != ring[0]) {
+      return false;
+    }
+  }
+  std::array<int, 2> forced{-1, -1};
+  if (ld == 2) {
+    int n = 0;
+    for (int i = 0; i < k; ++i)
+      if (line_.count(ekey(v, ring[i]))) forced[n++] = i;
+    if (n != 2 || line_.count(ekey(ring[forced[0]], ring[forced[1]]))) return false;
+  }
+  V3 up{0, 0, 0};
+  for (int f : fv) {
+    const auto& t = r_.faces[f];
+    const V3 n = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+    for (int c = 0; c < 3; ++c) up[c] += n[c];
+  }
+  std::vector<V3> at(k);
+  for (int i = 0; i < k; ++i) at[i] = P(ring[i]);
+  std::vector<std::array<int, 3>> tris;
+  double after = 0;
+  if (!best_polygon_triangulation(
+          at, up, [&](int i, int j) { return !edge_exists(ring[i], ring[j]); }, forced, tris, after))
+    return false;
+  double before = 1e300;
+  bool any_cut = false;
+  for (int f : fv) {
+    before = std::min(before, min_angle(f));
+    any_cut |= cut_[f] != 0;
+  }
+  if (!(after > before) || (!any_cut && after < threshold_)) return false;
+  // Each new face faces the way of the star and passes within the deviation bound of v.
+  const V3 pv = P(v);
+  double dv6 = 0;  // six times the volume change (the old faces span nothing seen from v)
+  for (const auto& t : tris) {
+    const V3 a = sub3(at[t[0]], pv), b = sub3(at[t[1]], pv), c = sub3(at[t[2]], pv);
+    const V3 n = cross(sub3(b, a), sub3(c, a));
+    const double ln = norm(n);
+    if (!(ln > 0) || dot(n, up) <= 0.1 * ln * norm(up)) return false;
+    if (std::fabs(dot(a, n)) / ln > max_dev_) return false;
+    dv6 += det(a, b, c);
+  }
+  if (std::fabs(dv6) / 6 > volume_budget_) return false;
+  start_move();
+  replaced_ = fv;
+  for (const auto& t : tris) {
+    new_ids_.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});
+    new_pos_.push_back({at[t[0]], at[t[1]], at[t[2]]});
+  }
+  if (!stays_clear()) return false;
+  // The first k - 2 faces of the star take the new triangles; the last two go.
+  for (int x : ring) {
+    auto& list = vf_[x];
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [&](int f) { return std::find(fv.begin(), fv.end(), f) != fv.end(); }),
+               list.end());
+  }
+  vf_[v].clear();
+  for (int i = 0; i < k; ++i) {
+    const int f = fv[i];
+    if (i < k - 2) {
+      r_.faces[f] = new_ids_[size_t(i)];
+      cut_[f] = any_cut;
+      for (int x : r_.faces[f]) vf_[x].push_back(f);
+      refile(f);
+    } else {
+      alive_[f] = 0;
+      grid_.remove(f);
+    }
+  }
+  if (ld == 2) {
+    const int a = ring[forced[0]], b = ring[forced[1]];
+    line_.erase(ekey(v, a));
+    line_.erase(ekey(v, b));
+    line_degree_[v] = 0;
+    line_.insert(ekey(a, b));  // the line's other edges at a and b stay: degrees unchanged
+  }
+  for (int x : ring) {
+    changed_[x] = 1;
+    for (int f : vf_[x])
+      if (alive_[f])
+        for (int y : r_.faces[f]) changed_[y] = 1;
+  }
+  const double budget_before = volume_budget_;
+  volume_budget_ -= std::fabs(dv6) / 6;
+  if (dv6 != 0)
+    for (int x : ring)
+      if (compensate(x, dv6)) {
+        volume_budget_ = budget_before;
+        break;
+      }
+  return true;
+}
+
 bool Collapser::try_relocate(int x) {
   if (line_degree_[x] > 0) return false;
   std::vector<int>& fx = scratch_fx_;
@@ -659,6 +789,9 @@ void Collapser::run_passes(double threshold) {
           if (try_collapse(a, b, false, &dv) && dv < best_dv) { best_dv = dv; best_v = a; best_w = b; }
         }
       if (best_v >= 0 && try_collapse(best_v, best_w)) { ++done; ++collapses_; ok = true; }
+      // Or an end of the short edge (then the third corner) leaves, its star filled again.
+      for (int c : {t[edges[0].second], t[(edges[0].second + 1) % 3], t[(edges[0].second + 2) % 3]})
+        if (!ok && try_remove_vertex(c)) { ++done; ++collapses_; ok = true; }
       // Otherwise a flip of any side may reshape the neighbourhood for a later pass.
       for (int k = 2; k >= 0 && !ok; --k)
         if (try_flip(f, edges[k].second)) { ++done; ++flips_; ok = true; }

@@ -3,6 +3,7 @@
 #include "union/exact.h"
 #include "union/face_clearance.h"
 #include "union/face_triangulation.h"
+#include "union/link_triangulation.h"
 #include "union/point_table.h"
 
 #include <gtest/gtest.h>
@@ -209,4 +210,56 @@ TEST(UnionClearance, GridFindsFacesAtTheirNewPlace) {
   grid.remove(1);
   grid.near({5.05, 5.01, -0.1}, {5.06, 5.02, 0.1}, near);
   EXPECT_EQ(near, (std::vector<int>{2}));
+}
+
+namespace {
+
+std::vector<V3> regular_polygon(int k) {
+  std::vector<V3> ring;
+  for (int i = 0; i < k; ++i) ring.push_back({std::cos(2 * M_PI * i / k), std::sin(2 * M_PI * i / k), 0.0});
+  return ring;
+}
+
+}  // namespace
+
+TEST(UnionLinkTriangulation, BestTriangulationOfAHexagonAndItsConstraints) {
+  const std::vector<V3> hex = regular_polygon(6);
+  const V3 up{0, 0, 1};
+  std::vector<std::array<int, 3>> tris;
+  double angle = 0;
+  ASSERT_TRUE(best_polygon_triangulation(hex, up, [](int, int) { return true; }, {-1, -1}, tris, angle));
+  EXPECT_EQ(tris.size(), 4u);
+  EXPECT_NEAR(angle * 180 / M_PI, 30.0, 1e-9);  // every triangulation of it has a 30 deg corner
+  // Seen from below the polygon turns the other way: no triangle qualifies.
+  EXPECT_FALSE(best_polygon_triangulation(hex, {0, 0, -1}, [](int, int) { return true; }, {-1, -1}, tris, angle));
+  // Diagonal (0, 3) forced: both halves are fans of two triangles on it.
+  ASSERT_TRUE(best_polygon_triangulation(hex, up, [](int, int) { return true; }, {3, 0}, tris, angle));
+  int on_forced = 0;
+  for (const auto& t : tris) {
+    const bool has0 = t[0] == 0 || t[1] == 0 || t[2] == 0, has3 = t[0] == 3 || t[1] == 3 || t[2] == 3;
+    on_forced += has0 && has3;
+  }
+  EXPECT_EQ(on_forced, 2);
+  // With no diagonal at vertex 0 allowed, the triangulation cannot contain one.
+  ASSERT_TRUE(best_polygon_triangulation(hex, up, [](int i, int) { return i != 0; }, {-1, -1}, tris, angle));
+  for (const auto& t : tris) {
+    if (t[0] != 0 && t[1] != 0 && t[2] != 0) continue;
+    EXPECT_TRUE((t[0] == 1 || t[1] == 1 || t[2] == 1) && (t[0] == 5 || t[1] == 5 || t[2] == 5));
+  }
+  // No diagonal at all: impossible for more than three corners.
+  EXPECT_FALSE(best_polygon_triangulation(hex, up, [](int, int) { return false; }, {-1, -1}, tris, angle));
+}
+
+TEST(UnionLinkTriangulation, ReflexCornerIsNeverCut) {
+  // An arrow: corner 2 is reflex, so diagonal (1, 3) would leave the polygon; the only
+  // triangulations use diagonals from the reflex corner, and all triangles turn one way.
+  const std::vector<V3> arrow{{0, 0, 0}, {2, -1, 0}, {1, 0, 0}, {2, 1, 0}};
+  std::vector<std::array<int, 3>> tris;
+  double angle = 0;
+  ASSERT_TRUE(best_polygon_triangulation(arrow, {0, 0, 1}, [](int, int) { return true; }, {-1, -1}, tris, angle));
+  ASSERT_EQ(tris.size(), 2u);
+  for (const auto& t : tris) {
+    const V3 &a = arrow[t[0]], &b = arrow[t[1]], &c = arrow[t[2]];
+    EXPECT_GT((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]), 0);
+  }
 }

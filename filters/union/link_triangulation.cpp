@@ -1,0 +1,86 @@
+#include "union/link_triangulation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mr::surface_union {
+
+namespace {
+
+V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot3(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross3(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+double corner_angle(const V3& o, const V3& p, const V3& q) {
+  const V3 u = sub3(p, o), w = sub3(q, o);
+  return std::atan2(std::sqrt(dot3(cross3(u, w), cross3(u, w))), dot3(u, w));
+}
+
+double smallest_angle(const V3& a, const V3& b, const V3& c) {
+  return std::min({corner_angle(a, b, c), corner_angle(b, c, a), corner_angle(c, a, b)});
+}
+
+// Diagonals (i, j) and (a, b) of one polygon cross when exactly one of a, b lies strictly
+// between i and j.
+bool diagonals_cross(int i, int j, int a, int b) {
+  if (i == a || i == b || j == a || j == b) return false;
+  const bool a_in = i < a && a < j, b_in = i < b && b < j;
+  return a_in != b_in;
+}
+
+}  // namespace
+
+bool best_polygon_triangulation(const std::vector<V3>& ring, const V3& up, const std::function<bool(int, int)>& allowed,
+                                std::array<int, 2> forced, std::vector<std::array<int, 3>>& out, double& min_angle) {
+  const int k = int(ring.size());
+  out.clear();
+  if (k < 3) return false;
+  if (forced[0] > forced[1]) std::swap(forced[0], forced[1]);
+  const bool has_forced = forced[0] >= 0;
+  auto side = [&](int i, int j) { return j == i + 1 || (i == 0 && j == k - 1); };
+  auto usable = [&](int i, int j) {
+    if (side(i, j)) return true;
+    if (has_forced && i == forced[0] && j == forced[1]) return true;
+    if (has_forced && diagonals_cross(i, j, forced[0], forced[1])) return false;
+    return allowed(i, j);
+  };
+  // best[i][j]: the best smallest angle of the sub-polygon i..j (closed by (i, j)).
+  constexpr double kNone = -1;
+  std::vector<double> best(size_t(k) * k, kNone);
+  std::vector<int> apex(size_t(k) * k, -1);
+  auto at = [k](int i, int j) { return size_t(i) * k + j; };
+  for (int i = 0; i + 1 < k; ++i) best[at(i, i + 1)] = 1e300;
+  for (int len = 2; len < k; ++len)
+    for (int i = 0; i + len < k; ++i) {
+      const int j = i + len;
+      if (!usable(i, j)) continue;
+      for (int m = i + 1; m < j; ++m) {
+        const double left = best[at(i, m)], right = best[at(m, j)];
+        if (left < 0 || right < 0) continue;
+        const V3 n = cross3(sub3(ring[m], ring[i]), sub3(ring[j], ring[i]));
+        if (!(dot3(n, up) > 0)) continue;
+        const double q = std::min({smallest_angle(ring[i], ring[m], ring[j]), left, right});
+        if (q > best[at(i, j)]) {
+          best[at(i, j)] = q;
+          apex[at(i, j)] = m;
+        }
+      }
+    }
+  if (best[at(0, k - 1)] < 0) return false;
+  min_angle = best[at(0, k - 1)];
+  std::vector<std::array<int, 2>> todo{{0, k - 1}};
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    if (j <= i + 1) continue;
+    const int m = apex[at(i, j)];
+    out.push_back({i, m, j});
+    todo.push_back({i, m});
+    todo.push_back({m, j});
+  }
+  return true;
+}
+
+}  // namespace mr::surface_union
