@@ -114,6 +114,11 @@ private:
   /// third common neighbour (the link condition) or a face of the fan would turn over,
   /// another triangulation of the same hole often exists.
   bool try_remove_vertex(int v);
+  /// Moves x (on one line, degree 2) part of the way towards one of its two line
+  /// neighbours, to the place among a few along each line edge that raises the worst
+  /// angle of its faces most: where two lines pass closer than a sliver allows, their
+  /// vertices can be staggered although none may leave its line.
+  bool try_slide_on_line(int x);
   bool edge_exists(int a, int b) const {
     for (int f : vf_[a])
       if (alive_[f] && has_corner(r_.faces[f], b)) return true;
@@ -647,6 +652,67 @@ bool Collapser::try_remove_vertex(int v) {
   return true;
 }
 
+bool Collapser::try_slide_on_line(int x) {
+  if (line_degree_[x] != 2) return false;
+  std::vector<int> fx;
+  live_faces(x, fx);
+  int ends[2], n = 0;
+  for (int f : fx)
+    for (int y : r_.faces[f])
+      if (y != x && n < 2 && line_.count(ekey(x, y)) && (n == 0 || ends[0] != y)) ends[n++] = y;
+  if (n != 2) return false;
+  double before = 1e300;
+  for (int f : fx) before = std::min(before, min_angle(f));
+  const V3 o = P(x);
+  V3 best_at = o;
+  double best = before;
+  for (int e = 0; e < 2; ++e) {
+    const V3 d = sub3(P(ends[e]), o);
+    for (double t : {0.1, 0.2, 0.3, 0.4}) {
+      const V3 at{o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
+      // The line now runs straight from the other neighbour to `at`: it leaves the
+      // intersection curve by at most the distance of x from that chord.
+      const V3 chord = sub3(at, P(ends[1 - e]));
+      const V3 off = cross(sub3(o, P(ends[1 - e])), chord);
+      if (!(norm(chord) > 0) || norm(off) / norm(chord) > max_dev_) continue;
+      double worst = 1e300;
+      bool fine = true;
+      for (int f : fx) {
+        V3 q[3];
+        if (!moved_face(f, x, at, q)) { fine = false; break; }
+        const double a = face_min_angle(q[0], q[1], q[2]);
+        if (!cut_[f] && a < threshold_ && a < min_angle(f)) { fine = false; break; }
+        worst = std::min(worst, a);
+      }
+      if (fine && worst > best) { best = worst; best_at = at; }
+    }
+  }
+  if (!(best > before)) return false;
+  // Six times the volume change of the move, given back by a free neighbour or paid.
+  double dv6 = 0;
+  for (int f : fx) {
+    const auto& t = r_.faces[f];
+    V3 q[3];
+    for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? best_at : P(t[z]);
+    dv6 += det(sub3(q[0], o), sub3(q[1], o), sub3(q[2], o));  // old faces span nothing seen from o
+  }
+  if (std::fabs(dv6) / 6 > volume_budget_) return false;
+  if (!move_vertex(x, fx, best_at)) return false;
+  const double budget_before = volume_budget_;
+  volume_budget_ -= std::fabs(dv6) / 6;
+  std::vector<int> ring;
+  for (int f : fx)
+    for (int y : r_.faces[f])
+      if (y != x) ring.push_back(y);
+  if (dv6 != 0)
+    for (int y : ring)
+      if (compensate(y, dv6)) {
+        volume_budget_ = budget_before;
+        break;
+      }
+  return true;
+}
+
 bool Collapser::try_relocate(int x) {
   if (line_degree_[x] > 0) return false;
   std::vector<int>& fx = scratch_fx_;
@@ -800,6 +866,8 @@ void Collapser::run_passes(double threshold) {
       // Or a corner slides towards the middle of its ring, within the surface.
       for (int z = 0; z < 3 && !ok; ++z)
         if (try_relocate(t[z])) { ++done; ok = true; }
+      for (int z = 0; z < 3 && !ok; ++z)
+        if (try_slide_on_line(t[z])) { ++done; ok = true; }
     }
     if (done == 0) break;
   }
