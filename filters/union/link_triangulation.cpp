@@ -18,8 +18,13 @@ double corner_angle(const V3& o, const V3& p, const V3& q) {
   return std::atan2(std::sqrt(dot3(cross3(u, w), cross3(u, w))), dot3(u, w));
 }
 
+// The smallest angle lies opposite the shortest side: one atan2 instead of three.
 double smallest_angle(const V3& a, const V3& b, const V3& c) {
-  return std::min({corner_angle(a, b, c), corner_angle(b, c, a), corner_angle(c, a, b)});
+  const V3 ab = sub3(b, a), bc = sub3(c, b), ca = sub3(a, c);
+  const double lab = dot3(ab, ab), lbc = dot3(bc, bc), lca = dot3(ca, ca);
+  if (lab <= lbc && lab <= lca) return corner_angle(c, a, b);
+  if (lbc <= lca) return corner_angle(a, b, c);
+  return corner_angle(b, c, a);
 }
 
 // Diagonals (i, j) and (a, b) of one polygon cross when exactly one of a, b lies strictly
@@ -46,6 +51,9 @@ bool best_polygon_triangulation(const std::vector<V3>& ring, const V3& up, const
     if (has_forced && diagonals_cross(i, j, forced[0], forced[1])) return false;
     return allowed(i, j);
   };
+  std::vector<char> ok(size_t(k) * k, 0);  // usable(i, j), asked once per pair
+  for (int i = 0; i < k; ++i)
+    for (int j = i + 1; j < k; ++j) ok[size_t(i) * k + j] = usable(i, j);
   // best[i][j]: the best smallest angle of the sub-polygon i..j (closed by (i, j)).
   constexpr double kNone = -1;
   std::vector<double> best(size_t(k) * k, kNone);
@@ -55,7 +63,7 @@ bool best_polygon_triangulation(const std::vector<V3>& ring, const V3& up, const
   for (int len = 2; len < k; ++len)
     for (int i = 0; i + len < k; ++i) {
       const int j = i + len;
-      if (!usable(i, j)) continue;
+      if (!ok[at(i, j)]) continue;
       for (int m = i + 1; m < j; ++m) {
         const double left = best[at(i, m)], right = best[at(m, j)];
         if (left < 0 || right < 0) continue;

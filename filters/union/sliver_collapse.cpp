@@ -17,6 +17,10 @@ constexpr double kPi = 3.14159265358979323846;
 // A star is smooth when every face normal is within ~45 degrees of the star's mean
 // normal (CAD creases of 90 degrees are not; sphere meshes and blobs are).
 constexpr double kSmoothStarCos = 0.7;
+// A move may trade a worse worst angle for fewer slivers only while that angle stays above this.
+constexpr double kNoRatchetBelow = kPi / 180;
+// Larger stars (fans of CAD plates) are left to the other moves: their link has too many triangulations to weigh each time.
+constexpr int kMaxRemovedValence = 12;
 
 /// Vertex x is a corner of face t. Written out: std::find on the three corners was an
 /// out-of-line call, run a few hundred thousand times by the collapse candidates.
@@ -99,6 +103,9 @@ private:
   /// that the enclosed volume changes by -dv6 / 6, when no face flips or becomes (more
   /// of) a sliver and the move stays within the deviation bound.
   bool compensate(int x, double dv6);
+  /// Where compensate(x, dv6) would move x, checked but for the crossings (scratch_fx_
+  /// then holds x's faces).
+  bool plan_compensation(int x, double dv6, V3& moved);
   /// Moves free vertex x towards the centroid of its ring, projected so that the volume
   /// stays the same (perpendicular to its star's volume gradient), when that raises the
   /// worst angle of its faces and flips none.
@@ -359,7 +366,9 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
     }
     // Better: a larger worst angle, or fewer slivers without making the worst one
     // much worse (two neighbouring slivers often cannot both improve in one step).
-    if (!(after > before || (bad_after < bad_before && after >= 0.5 * before))) return false;
+    // Not below a degree, though: repeated halvings would ratchet a needle towards zero.
+    if (!(after > before || (bad_after < bad_before && after >= 0.5 * before && after >= kNoRatchetBelow)))
+      return false;
     dv = dot(g, p) - s_old;
     return true;
   };
@@ -541,7 +550,7 @@ bool Collapser::try_remove_vertex(int v) {
   std::vector<int> fv;
   live_faces(v, fv);
   const int k = int(fv.size());
-  if (k < 3 || k > 32) return false;
+  if (k < 3 || k > kMaxRemovedValence) return false;
   // The link in order: each face (v, a, b) gives the link side a -> b.
   std::vector<std::array<int, 2>> sides;
   for (int f : fv) {
@@ -668,7 +677,7 @@ bool Collapser::try_slide_on_line(int x) {
   double best = before;
   for (int e = 0; e < 2; ++e) {
     const V3 d = sub3(P(ends[e]), o);
-    for (double t : {0.1, 0.2, 0.3, 0.4}) {
+    for (double t : {0.15, 0.3, 0.5, 0.7}) {
       const V3 at{o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
       // The line now runs straight from the other neighbour to `at`: it leaves the
       // intersection curve by at most the distance of x from that chord.
@@ -696,21 +705,39 @@ bool Collapser::try_slide_on_line(int x) {
     for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? best_at : P(t[z]);
     dv6 += det(sub3(q[0], o), sub3(q[1], o), sub3(q[2], o));  // old faces span nothing seen from o
   }
-  if (std::fabs(dv6) / 6 > volume_budget_) return false;
-  if (!move_vertex(x, fx, best_at)) return false;
-  const double budget_before = volume_budget_;
-  volume_budget_ -= std::fabs(dv6) / 6;
-  std::vector<int> ring;
+  std::vector<int> ring;  // free neighbours, which may give the volume back
   for (int f : fx)
     for (int y : r_.faces[f])
-      if (y != x) ring.push_back(y);
-  if (dv6 != 0)
+      if (y != x && line_degree_[y] == 0 && std::find(ring.begin(), ring.end(), y) == ring.end()) ring.push_back(y);
+  const bool affordable = std::fabs(dv6) / 6 <= volume_budget_;
+  if (!affordable) {
+    // Some free neighbour must be able to give the volume back after the move: planned
+    // with x moved (no crossing check yet), before anything is checked exactly.
+    r_.vertices[x] = best_at;
+    bool plan = false;
+    V3 at;
     for (int y : ring)
-      if (compensate(y, dv6)) {
-        volume_budget_ = budget_before;
-        break;
-      }
-  return true;
+      if (!plan) plan = plan_compensation(y, dv6, at);
+    r_.vertices[x] = o;
+    if (!plan) return false;
+  }
+  std::vector<std::pair<int, char>> marks;  // changed_ before the move, restored if it is undone
+  for (int f : fx)
+    for (int y : r_.faces[f]) marks.push_back({y, changed_[y]});
+  if (!move_vertex(x, fx, best_at)) return false;
+  if (dv6 == 0) return true;
+  for (int y : ring)
+    if (compensate(y, dv6)) return true;
+  if (affordable) {
+    volume_budget_ -= std::fabs(dv6) / 6;
+    return true;
+  }
+  // Neither given back nor affordable: x goes back where it was (which was clear), and
+  // nothing counts as changed.
+  r_.vertices[x] = o;
+  for (int f : fx) refile(f);
+  for (auto it = marks.rbegin(); it != marks.rend(); ++it) changed_[it->first] = it->second;
+  return false;
 }
 
 bool Collapser::try_relocate(int x) {
@@ -773,7 +800,7 @@ bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
   return true;
 }
 
-bool Collapser::compensate(int x, double dv6) {
+bool Collapser::plan_compensation(int x, double dv6, V3& moved) {
   if (line_degree_[x] > 0) return false;
   std::vector<int>& fx = scratch_fx_;
   live_faces(x, fx);
@@ -792,13 +819,18 @@ bool Collapser::compensate(int x, double dv6) {
   V3 delta;
   for (int k = 0; k < 3; ++k) delta[k] = -dv6 / gg * g[k];
   if (norm(delta) > max_dev_) return false;
-  const V3 moved{o[0] + delta[0], o[1] + delta[1], o[2] + delta[2]};
+  moved = {o[0] + delta[0], o[1] + delta[1], o[2] + delta[2]};
   for (int f : fx) {
     V3 q[3];
     if (!moved_face(f, x, moved, q)) return false;
     if (face_min_angle(q[0], q[1], q[2]) < std::min(min_angle(f), threshold_)) return false;
   }
-  return move_vertex(x, fx, moved);
+  return true;
+}
+
+bool Collapser::compensate(int x, double dv6) {
+  V3 moved;
+  return plan_compensation(x, dv6, moved) && move_vertex(x, scratch_fx_, moved);
 }
 
 int Collapser::run(double threshold) {
