@@ -283,7 +283,9 @@ FaceGrid::FaceGrid(const std::vector<V3>& vertices, const std::vector<std::array
   const double extent = std::max({hi_all[0] - lo_all[0], hi_all[1] - lo_all[1], hi_all[2] - lo_all[2]});
   cell_ = std::max({2 * sizes[sizes.size() / 2], extent / 4096, 1e-300});
   origin_ = lo_all;
-  cells_.reserve(2 * faces.size());
+  cell_index_.reserve(2 * faces.size());
+  heads_.reserve(2 * faces.size());
+  entries_.reserve(3 * faces.size());
   for (int f = 0; f < int(faces.size()); ++f) add(f);
 }
 
@@ -311,13 +313,28 @@ void FaceGrid::remove(int f) {
   for (int64_t i = a[0]; i <= b[0]; ++i)
     for (int64_t j = a[1]; j <= b[1]; ++j)
       for (int64_t k = a[2]; k <= b[2]; ++k) {
-        auto& cell = cells_[key(i, j, k, level)];
-        auto it = std::find(cell.begin(), cell.end(), f);
-        if (it != cell.end()) {
-          *it = cell.back();
-          cell.pop_back();
-        }
+        int* head = head_of(key(i, j, k, level));
+        if (!head) continue;
+        for (int* link = head; *link >= 0; link = &entries_[size_t(*link)].next)
+          if (entries_[size_t(*link)].face == f) {
+            const int e = *link;
+            *link = entries_[size_t(e)].next;
+            entries_[size_t(e)].next = free_entry_;
+            free_entry_ = e;
+            break;
+          }
       }
+}
+
+int* FaceGrid::head_of(int64_t key) {
+  const int* slot = cell_index_.find(key);
+  return slot ? &heads_[size_t(*slot)] : nullptr;
+}
+
+int& FaceGrid::head_or_new(int64_t key) {
+  const auto [slot, added] = cell_index_.emplace(key, int(heads_.size()));
+  if (added) heads_.push_back(-1);
+  return heads_[size_t(slot)];
 }
 
 void FaceGrid::add(int f) {
@@ -336,7 +353,17 @@ void FaceGrid::add(int f) {
   for (int k = 0; k < 3; ++k) { a[k] = cell_of(lo[k], k, level); b[k] = cell_of(hi[k], k, level); }
   for (int64_t i = a[0]; i <= b[0]; ++i)
     for (int64_t j = a[1]; j <= b[1]; ++j)
-      for (int64_t k = a[2]; k <= b[2]; ++k) cells_[key(i, j, k, level)].push_back(f);
+      for (int64_t k = a[2]; k <= b[2]; ++k) {
+        int& head = head_or_new(key(i, j, k, level));
+        int e = free_entry_;
+        if (e >= 0) free_entry_ = entries_[size_t(e)].next;
+        else {
+          e = int(entries_.size());
+          entries_.push_back({});
+        }
+        entries_[size_t(e)] = {f, head};
+        head = e;
+      }
 }
 
 void FaceGrid::near(const V3& lo, const V3& hi, std::vector<int>& out) {
@@ -362,9 +389,8 @@ void FaceGrid::near(const V3& lo, const V3& hi, std::vector<int>& out) {
     for (int64_t i = a[0]; i <= b[0]; ++i)
       for (int64_t j = a[1]; j <= b[1]; ++j)
         for (int64_t k = a[2]; k <= b[2]; ++k) {
-          auto it = cells_.find(key(i, j, k, level));
-          if (it != cells_.end())
-            for (int g : it->second) consider(g);
+          if (const int* head = head_of(key(i, j, k, level)))
+            for (int e = *head; e >= 0; e = entries_[size_t(e)].next) consider(entries_[size_t(e)].face);
         }
   }
 }

@@ -4,9 +4,10 @@
 // is applied.
 #pragma once
 
+#include "common/flat_index_map.h"
+
 #include <array>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace mr::surface_union {
@@ -53,7 +54,23 @@ private:
   double cell_ = 1;  // finest level
   int levels_used_ = 0;
   std::vector<int> level_faces_[kLevels];  // faces filed on each level (once per add)
-  std::unordered_map<int64_t, std::vector<int>> cells_;
+  // Cells as singly linked lists in flat arrays (a node allocation per cell and per
+  // face filed cost more than the lookups on a million faces): key -> list head.
+  struct CellKeyHash {
+    size_t operator()(int64_t k) const {
+      const uint64_t h = uint64_t(k) * 0x9E3779B97F4A7C15ull;
+      return size_t(h ^ (h >> 29));
+    }
+  };
+  struct Entry {
+    int face, next;
+  };
+  int* head_of(int64_t key);         // the list of a cell, or nullptr
+  int& head_or_new(int64_t key);     // the list of a cell, made if missing
+  FlatIndexMap<int64_t, CellKeyHash> cell_index_;
+  std::vector<int> heads_;           // per cell: first entry, -1 when empty
+  std::vector<Entry> entries_;
+  int free_entry_ = -1;              // removed entries, reused
   std::vector<std::array<V3, 2>> boxes_;  // as of the last add
   std::vector<int> level_;                // where each face is filed; -1: not filed
   std::vector<int> seen_;
