@@ -1,0 +1,97 @@
+#!/usr/bin/env python3
+"""Damaged inputs for the advancing-front remesher: it must return (or refuse with a
+PyMeshLabException) within a time limit, never crash or hang.
+
+Usage: .venv/bin/python scripts/fuzz_remesh.py FIRST_SEED LAST_SEED [--timeout S]
+Seed s damages one shared mesh (s % 4: fandisk, part, bunny, blade) in one way (s % 7):
+drop 20% of the faces, noise of 1% of the diagonal on every vertex, reversed copies of 10% of
+the faces, every 30th vertex moved onto the next (zero-area faces), keep 5% of the faces,
+flatten one axis, a shifted copy added; target length and ridge angle are drawn from the seed.
+Each case runs in its own process, so a crash or a hang is seen as such. Prints one line per
+seed and the failing seeds at the end; not part of the test suite.
+"""
+import argparse
+import pathlib
+import subprocess
+import sys
+import time
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+DATA = REPO.parent / "shared" / "data"
+MESHES = ["cad/fandisk.obj", "cad/part.off", "organic/stanford-bunny.obj", "cad/blade.off"]
+DAMAGES = ["drop 20% of the faces", "1% noise", "reversed copies of 10% of the faces",
+           "every 30th vertex onto the next", "keep 5% of the faces", "flattened axis", "shifted copy added"]
+
+CASE = r'''
+import sys
+import numpy as np
+import meshregrid  # noqa: F401
+import pymeshlab
+seed, path = int(sys.argv[1]), sys.argv[2]
+rng = np.random.default_rng(seed)
+ms = pymeshlab.MeshSet()
+ms.load_new_mesh(path)
+v = ms.current_mesh().vertex_matrix().copy()
+f = ms.current_mesh().face_matrix().copy()
+diag = ms.current_mesh().bounding_box().diagonal()
+kind = seed % 7
+if kind == 0:
+    f = f[rng.random(len(f)) > 0.2]
+elif kind == 1:
+    v = v + rng.normal(0, 0.01 * diag, v.shape)
+elif kind == 2:
+    pick = f[rng.random(len(f)) < 0.1]
+    f = np.concatenate([f, pick[:, ::-1]])
+elif kind == 3:
+    for i in range(0, len(v) - 1, 30):
+        v[i] = v[i + 1]
+elif kind == 4:
+    f = f[rng.random(len(f)) < 0.05]
+elif kind == 5:
+    v[:, int(rng.integers(0, 3))] = 0
+else:
+    f = np.concatenate([f, f + len(v)])
+    v = np.concatenate([v, v + 0.1 * diag * rng.random(3)])
+percent = float(rng.choice([0.5, 1, 2, 5]))
+ridge = float(rng.choice([20, 30, 60]))
+out = pymeshlab.MeshSet()
+out.add_mesh(pymeshlab.Mesh(v, f))
+try:
+    r = out.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(percent / 100 * diag), ridge_angle=ridge)
+    print(f"{percent}% ridge {ridge}: {out.current_mesh().face_number()} faces, "
+          f"open sides {r['unmeshed_sides']}, unmeshed patches {r['unmeshed_patches']}")
+except pymeshlab.PyMeshLabException as e:
+    print(f"{percent}% ridge {ridge}: refused: {str(e).splitlines()[-1][:160]}")
+'''
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("first", type=int)
+    ap.add_argument("last", type=int)
+    ap.add_argument("--timeout", type=float, default=300)
+    args = ap.parse_args()
+    failing = []
+    for seed in range(args.first, args.last):
+        mesh = MESHES[seed % 4]
+        t = time.perf_counter()
+        try:
+            p = subprocess.run([sys.executable, "-c", CASE, str(seed), str(DATA / mesh)], capture_output=True,
+                               text=True, timeout=args.timeout)
+            took = time.perf_counter() - t
+            if p.returncode != 0:
+                failing.append(seed)
+                status = f"CRASHED (exit {p.returncode}): {p.stderr.strip().splitlines()[-1:] }"
+            else:
+                status = p.stdout.strip().splitlines()[-1]
+        except subprocess.TimeoutExpired:
+            took = time.perf_counter() - t
+            failing.append(seed)
+            status = f"TIMED OUT after {args.timeout:.0f} s"
+        print(f"seed {seed} {mesh} ({DAMAGES[seed % 7]}): {status} [{took:.1f} s]", flush=True)
+    print("failing seeds:", failing or "none")
+    return 1 if failing else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
