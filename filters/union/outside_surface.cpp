@@ -177,19 +177,30 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     }
     return false;
   };
-  // Pieces: extreme vertex (largest x, then y, z) and the face there seen best from +x.
-  std::vector<int> root_list;
-  std::vector<int> extreme(ns, -1);  // per root: point index
+  // Pieces, numbered in the order of their first face (the per-piece tables below are
+  // as long as the pieces, not the faces).
+  std::vector<int> piece_of(ns, -1);
+  int pieces = 0;
+  {
+    std::vector<int> piece_of_root(ns, -1);
+    for (int s = 0; s < ns; ++s) {
+      if (dropped[s]) continue;
+      const int r = find(uf, s);
+      if (piece_of_root[r] < 0) piece_of_root[r] = pieces++;
+      piece_of[s] = piece_of_root[r];
+    }
+  }
+  // Extreme vertex of each piece (largest x, then y, z) and the face there seen best from +x.
+  std::vector<int> extreme(pieces, -1);  // point index
   for (int s = 0; s < ns; ++s) {
     if (dropped[s]) continue;
-    const int r = find(uf, s);
-    if (extreme[r] < 0) root_list.push_back(r);
+    const int r = piece_of[s];
     for (int z = 0; z < 3; ++z) {
       const int p = sub[s][z];
       if (extreme[r] < 0 || lexicographically_greater(points[p], points[extreme[r]])) extreme[r] = p;
     }
   }
-  out.pieces = int(root_list.size());
+  out.pieces = pieces;
   // Faces at the extreme vertex: the one facing +x most is outside. Decided exactly:
   // bodies touching there can have faces tilted against each other by 1e-16.
   auto exact_normal = [&](int s, mpq_class* n) {
@@ -211,30 +222,32 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     if (sgn(lb) == 0) return true;
     return na[0] * abs(na[0]) * lb > nb[0] * abs(nb[0]) * la;
   };
-  std::vector<int> start(ns, -1);
+  std::vector<int> start(pieces, -1);
 
-  std::vector<std::set<int>> piece_bodies(ns);
+  std::vector<std::set<int>> piece_bodies(pieces);
   auto at_extreme = [&](int s, int r) {
     return sub[s][0] == extreme[r] || sub[s][1] == extreme[r] || sub[s][2] == extreme[r];
   };
-  for (int s = 0; s < ns; ++s) {
-    if (dropped[s]) continue;
-    const int r = find(uf, s);
-    piece_bodies[r].insert(sub_body[s]);
+  // (Neighbouring faces mostly share piece and body: a pair is only looked up when it differs
+  // from the last one.)
+  std::vector<std::set<int>> pieces_of_body(soup.body_count);
+  for (int s = 0, last_piece = -1, last_body = -1; s < ns; ++s) {
+    if (dropped[s] || (piece_of[s] == last_piece && sub_body[s] == last_body)) continue;
+    last_piece = piece_of[s];
+    last_body = sub_body[s];
+    piece_bodies[last_piece].insert(last_body);
+    pieces_of_body[last_body].insert(last_piece);
   }
   // A body whose faces were dropped as copies of a piece's faces lies on that piece:
   // it belongs to the piece for the inside test below.
   {
-    std::vector<std::set<int>> pieces_of_body(soup.body_count);
-    for (int s = 0; s < ns; ++s)
-      if (!dropped[s]) pieces_of_body[sub_body[s]].insert(find(uf, s));
     for (int s = 0; s < ns; ++s)
       if (kept_copy_body[s] >= 0)
         for (int r : pieces_of_body[kept_copy_body[s]]) piece_bodies[r].insert(sub_body[s]);
   }
   for (int s = 0; s < ns; ++s) {
     if (dropped[s]) continue;
-    const int r = find(uf, s);
+    const int r = piece_of[s];
     if (!at_extreme(s, r)) continue;
     if (start[r] < 0 || faces_more_towards_x(s, start[r])) start[r] = s;
   }
@@ -254,12 +267,12 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
   // extreme vertex, say) or lie on one (a coincident copy): a point on the other body's
   // surface gives a winding number near 1/2 and decides nothing, so the first point with
   // a clear answer decides; with none the piece only touches and stays.
-  std::vector<std::vector<V3>> samples(ns);
-  std::vector<double> largest_area(ns, -1);
-  std::vector<V3> largest_centroid(ns);
+  std::vector<std::vector<V3>> samples(pieces);
+  std::vector<double> largest_area(pieces, -1);
+  std::vector<V3> largest_centroid(pieces);
   for (int s = 0; s < ns; ++s) {
     if (dropped[s]) continue;
-    const int r = find(uf, s);
+    const int r = piece_of[s];
     const V3 n = cross(sub3(P(sub[s][1]), P(sub[s][0])), sub3(P(sub[s][2]), P(sub[s][0])));
     V3 c{0, 0, 0};
     for (int z = 0; z < 3; ++z)
@@ -268,7 +281,7 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     if (samples[r].size() < 4 && dot(n, n) > 0) samples[r].push_back(c);
   }
   std::vector<int> stack;
-  for (int r : root_list) {
+  for (int r = 0; r < pieces; ++r) {
     std::vector<V3> points_to_test{largest_centroid[r], P(extreme[r])};
     points_to_test.insert(points_to_test.end(), samples[r].begin(), samples[r].end());
     bool inside = false;
