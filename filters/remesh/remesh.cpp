@@ -159,13 +159,26 @@ int trouble(const OutputMesh& out, int patch, const FrontResult& r, const Surfac
   return r.unmeshed_sides + int(pinched.size()) + oversized + int(stray.size());
 }
 
+// A repair round or a retry copies and scans the whole output so far: it is charged that
+// many checks from the run's budget (with hundreds of broken patches on a damaged input the
+// rounds, not the fronts, were what never ended). False: the budget is spent, do not start.
+constexpr long kChecksPerWholeMeshElement = 10;  // a hash insert and a copy cost ~10 checks
+bool spend_on_whole_mesh(const FrontParams& fp, const OutputMesh& out) {
+  if (!fp.checks_left) return true;
+  if (*fp.checks_left <= 0) return false;
+  *fp.checks_left -= kChecksPerWholeMeshElement * (long(out.faces.size()) + long(out.points.size()));
+  return true;
+}
+
 FrontResult repair_locally(OutputMesh& out, const std::vector<FrontSide>& initial_front, int patch,
                            const SurfaceLocator& locator, const SizeField& size, const FrontParams& fp,
                            double target, FrontResult r, Result& result) {
   std::vector<int> spots;
   int problems = trouble(out, patch, r, locator, target, spots);
+  if (problems > 0 && !spend_on_whole_mesh(fp, out)) return r;
   int bad = problems > 0 ? bad_edges(out) : 0;  // edges with two faces of one orientation or more
   for (int round = 0; round < kRepairRounds && problems > 0; ++round) {
+    if (!spend_on_whole_mesh(fp, out)) break;
     OutputMesh saved = out;
     const std::vector<FrontSide> hole =
         open_hole_around(out, patch, initial_front, r.open_sides, spots, kRepairRadius * target);
@@ -212,6 +225,7 @@ FrontResult mesh_patch(OutputMesh& out, const std::vector<FrontSide>& front, int
   r = repair_locally(out, front, patch, locator, size, fp, target, r, result);
   int open = open_or_pinched(out, patch, r);
   for (double scale = kRetryScale; open > 0 && scale >= kMinRetryScale; scale *= kRetryScale) {
+    if (!spend_on_whole_mesh(fp, out)) break;
     OutputMesh saved = out;
     remove_patch_faces(out, patch);
     const SizeField smaller = size.scaled(scale);
