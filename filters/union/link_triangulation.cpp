@@ -1,5 +1,7 @@
 #include "union/link_triangulation.h"
 
+#include "union/triangle_angles.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,20 +13,6 @@ V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2
 double dot3(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 V3 cross3(const V3& a, const V3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-double corner_angle(const V3& o, const V3& p, const V3& q) {
-  const V3 u = sub3(p, o), w = sub3(q, o);
-  return std::atan2(std::sqrt(dot3(cross3(u, w), cross3(u, w))), dot3(u, w));
-}
-
-// The smallest angle lies opposite the shortest side: one atan2 instead of three.
-double smallest_angle(const V3& a, const V3& b, const V3& c) {
-  const V3 ab = sub3(b, a), bc = sub3(c, b), ca = sub3(a, c);
-  const double lab = dot3(ab, ab), lbc = dot3(bc, bc), lca = dot3(ca, ca);
-  if (lab <= lbc && lab <= lca) return corner_angle(c, a, b);
-  if (lbc <= lca) return corner_angle(a, b, c);
-  return corner_angle(b, c, a);
 }
 
 // Diagonals (i, j) and (a, b) of one polygon cross when exactly one of a, b lies strictly

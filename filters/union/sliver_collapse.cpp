@@ -1,6 +1,7 @@
 #include "union/sliver_collapse.h"
 
 #include "union/link_triangulation.h"
+#include "union/triangle_angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,20 +33,6 @@ V3 cross(const V3& a, const V3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 double norm(const V3& a) { return std::sqrt(dot(a, a)); }
-
-double angle(const V3& o, const V3& p, const V3& q) {
-  const V3 a = sub3(p, o), b = sub3(q, o);
-  return std::atan2(norm(cross(a, b)), dot(a, b));
-}
-
-double face_min_angle(const V3& a, const V3& b, const V3& c) {
-  // The smallest angle lies opposite the shortest side: one atan2 instead of three.
-  const V3 ab = sub3(b, a), bc = sub3(c, b), ca = sub3(a, c);
-  const double lab = dot(ab, ab), lbc = dot(bc, bc), lca = dot(ca, ca);
-  if (lab <= lbc && lab <= lca) return angle(c, a, b);
-  if (lbc <= lca) return angle(a, b, c);
-  return angle(b, c, a);
-}
 
 class Collapser {
 public:
@@ -80,7 +67,7 @@ private:
   /// Smallest angle of face f, kept until the face changes (every candidate move
   /// compares the angles of the same star).
   double min_angle(int f) const {
-    if (angle_[f] < 0) angle_[f] = face_min_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2]));
+    if (angle_[f] < 0) angle_[f] = smallest_angle(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2]));
     return angle_[f];
   }
   /// Face f has new corners or a moved corner: filed again, its angle recomputed.
@@ -357,7 +344,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
         const double ln = norm(n_new), lo = norm(n_old);
         if (!(ln > 0) || dot(n_old, n_new) <= 0.1 * lo * ln) return false;
         if (std::fabs(dot(sub3(P(has_v ? v : w), q[0]), n_new)) / ln > max_dev_) return false;
-        const double a = face_min_angle(q[0], q[1], q[2]);
+        const double a = smallest_angle(q[0], q[1], q[2]);
         // A face the cut did not make is never turned into a sliver (nothing would treat it).
         if (!cut_[f] && a < threshold_ && a < a0) return false;
         after = std::min(after, a);
@@ -475,7 +462,7 @@ bool Collapser::try_flip(int f, int z) {
   const double lc = norm(cross_diagonals);
   if (!(lc > 0) || std::fabs(dot(sub3(P(c), P(u)), cross(sub3(P(v), P(u)), sub3(P(d), P(u))))) / lc > max_dev_) return false;
   const double before = std::min(min_angle(f), min_angle(g));
-  const double after = std::min(face_min_angle(P(u), P(d), P(c)), face_min_angle(P(d), P(v), P(c)));
+  const double after = std::min(smallest_angle(P(u), P(d), P(c)), smallest_angle(P(d), P(v), P(c)));
   if (!(after > before)) return false;
   // Six times the volume change, relative to u for accuracy.
   auto rel = [&](int x) { return sub3(P(x), P(u)); };
@@ -689,7 +676,7 @@ bool Collapser::try_slide_on_line(int x) {
       for (int f : fx) {
         V3 q[3];
         if (!moved_face(f, x, at, q)) { fine = false; break; }
-        const double a = face_min_angle(q[0], q[1], q[2]);
+        const double a = smallest_angle(q[0], q[1], q[2]);
         if (!cut_[f] && a < threshold_ && a < min_angle(f)) { fine = false; break; }
         worst = std::min(worst, a);
       }
@@ -779,7 +766,7 @@ bool Collapser::try_relocate(int x) {
   for (int f : fx) {
     V3 q[3];
     if (!moved_face(f, x, moved, q)) return false;
-    const double a = face_min_angle(q[0], q[1], q[2]);
+    const double a = smallest_angle(q[0], q[1], q[2]);
     if (!cut_[f] && a < threshold_ && a < min_angle(f)) return false;
     before = std::min(before, min_angle(f));
     after = std::min(after, a);
@@ -823,7 +810,7 @@ bool Collapser::plan_compensation(int x, double dv6, V3& moved) {
   for (int f : fx) {
     V3 q[3];
     if (!moved_face(f, x, moved, q)) return false;
-    if (face_min_angle(q[0], q[1], q[2]) < std::min(min_angle(f), threshold_)) return false;
+    if (smallest_angle(q[0], q[1], q[2]) < std::min(min_angle(f), threshold_)) return false;
   }
   return true;
 }
@@ -873,7 +860,7 @@ void Collapser::run_passes(double threshold) {
       std::array<std::pair<double, int>, 3> edges;
       for (int z = 0; z < 3; ++z) edges[z] = {norm(sub3(P(t[z]), P(t[(z + 1) % 3]))), z};
       std::sort(edges.begin(), edges.end());
-      const bool cap = angle(P(t[(edges[2].second + 2) % 3]), P(t[edges[2].second]), P(t[(edges[2].second + 1) % 3])) >
+      const bool cap = corner_angle(P(t[(edges[2].second + 2) % 3]), P(t[edges[2].second]), P(t[(edges[2].second + 1) % 3])) >
                        2 * kPi / 3;
       if (cap && try_flip(f, edges[2].second)) { ++done; ++flips_; continue; }
       // Of the allowed collapses, the one that changes the volume least.
@@ -935,7 +922,7 @@ void Collapser::compact() {
 
 double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vector<std::array<int, 3>>& f) {
   double best = 180;
-  for (const auto& t : f) best = std::min(best, face_min_angle(v[t[0]], v[t[1]], v[t[2]]) * 180 / kPi);
+  for (const auto& t : f) best = std::min(best, smallest_angle(v[t[0]], v[t[1]], v[t[2]]) * 180 / kPi);
   return best;
 }
 
