@@ -7,6 +7,7 @@
 #include "common/parallel_for.h"
 
 #include <memory>
+#include <system_error>
 #include <thread>
 #include <tuple>
 #include <utility>
@@ -29,8 +30,12 @@ public:
     auto held = std::make_unique<std::tuple<T...>>(std::move(objects)...);
     if (worker_count() <= 1) return;  // destroyed here, at the end of this call
     std::tuple<T...>* raw = held.get();
-    thread_ = std::thread([raw] { delete raw; });
-    held.release();  // the thread owns it now (if it could not start, it is freed here)
+    try {
+      thread_ = std::thread([raw] { delete raw; });
+    } catch (const std::system_error&) {
+      return;  // no thread to be had: freed here after all
+    }
+    held.release();  // the thread owns it now
   }
 
 private:

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -51,7 +52,15 @@ void parallel_for(size_t n, size_t chunk, Fn&& fn) {
   };
   std::vector<std::thread> pool;
   pool.reserve(size_t(threads - 1));
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+  // A thread that cannot start (a process at its thread limit) is not an error: the
+  // threads there are, the caller's among them, take all chunks.
+  for (int t = 1; t < threads; ++t) {
+    try {
+      pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;
+    }
+  }
   work();
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);
