@@ -113,6 +113,12 @@ private:
   /// angle of its faces most: where two lines pass closer than a sliver allows, their
   /// vertices can be staggered although none may leave its line.
   bool try_slide_on_line(int x);
+  /// The corners of x's faces may have new options in the next pass.
+  void mark_around(int x) {
+    for (int f : vf_[x])
+      if (alive_[f])
+        for (int y : r_.faces[f]) changed_[y] = 1;
+  }
   bool edge_exists(int a, int b) const {
     for (int f : vf_[a])
       if (alive_[f] && has_corner(r_.faces[f], b)) return true;
@@ -449,8 +455,7 @@ bool Collapser::try_flip(int f, int z) {
   int d = -1;
   for (int x : r_.faces[g])
     if (x != u && x != v) d = x;
-  for (int h : vf_[c])  // the new edge must not exist already
-    if (alive_[h] && has_corner(r_.faces[h], d)) return false;
+  if (edge_exists(c, d)) return false;  // the new edge must not exist already
   const V3 n_f = cross(sub3(P(v), P(u)), sub3(P(c), P(u)));
   const V3 n_g = cross(sub3(P(u), P(v)), sub3(P(d), P(v)));
   const V3 n1 = cross(sub3(P(d), P(u)), sub3(P(c), P(u)));
@@ -509,10 +514,7 @@ bool Collapser::try_flip(int f, int z) {
   refile(f);
   refile(g);
   cut_[f] = cut_[g] = cut_[f] || cut_[g];  // both new faces replace a cut face: treated on
-  for (int x : {u, v, c, d})
-    for (int h : vf_[x])
-      if (alive_[h])
-        for (int y : r_.faces[h]) changed_[y] = 1;
+  for (int x : {u, v, c, d}) mark_around(x);
   return true;
 }
 
@@ -631,12 +633,7 @@ bool Collapser::try_remove_vertex(int v) {
     line_degree_[v] = 0;
     line_.insert(ekey(a, b));  // the line's other edges at a and b stay: degrees unchanged
   }
-  for (int x : ring) {
-    changed_[x] = 1;
-    for (int f : vf_[x])
-      if (alive_[f])
-        for (int y : r_.faces[f]) changed_[y] = 1;
-  }
+  for (int x : ring) mark_around(x);
   const double budget_before = volume_budget_;
   volume_budget_ -= std::fabs(dv6) / 6;
   if (dv6 != 0)

@@ -124,12 +124,10 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   PairIntersector intersector(soup, pts, vertex_point);
   intersector.reserve(pairs.size() / 4);  // crossings: ~1/5 of the pairs
   std::set<std::pair<int, int>> body_pairs;
-  std::vector<char> may_meet;
-  intersector.prepare(pairs, may_meet);
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    if (!may_meet[k]) continue;
-    const auto [f, g] = pairs[k];
-    if (intersector.intersect(f, g, cf)) {
+  std::vector<PairIntersector::Candidate> may_meet = intersector.prepare(pairs);
+  for (const auto& candidate : may_meet) {
+    const auto [f, g] = pairs[size_t(candidate.pair)];
+    if (intersector.intersect(pairs[size_t(candidate.pair)], candidate, cf)) {
       ++r.intersecting_face_pairs;
       body_pairs.insert({std::min(soup.body[f], soup.body[g]), std::max(soup.body[f], soup.body[g])});
     }

@@ -135,19 +135,24 @@ bool PairIntersector::may_meet(int f, int g, int sx[3], int st[3]) const {
   return !sections_surely_apart(f, st, g, sx);
 }
 
-void PairIntersector::prepare(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& may) {
-  may.assign(pairs.size(), 0);
-  // Per chunk of pairs, the crossings its pairs ask for (an edge that changes side of
-  // the other face's plane), then the distinct ones built in parallel.
+std::vector<PairIntersector::Candidate> PairIntersector::prepare(const std::vector<std::pair<int, int>>& pairs) {
+  // Per chunk of pairs, those that may meet and the crossings they ask for (an edge that
+  // changes side of the other face's plane), then the distinct crossings built in parallel.
   constexpr size_t kChunk = 4096;
   const size_t chunks = (pairs.size() + kChunk - 1) / kChunk;
   std::vector<std::vector<EFKey>> wanted(chunks);
+  std::vector<std::vector<Candidate>> meeting(chunks);
   parallel_for(chunks, 1, [&](size_t c) {
     for (size_t k = c * kChunk, end = std::min(pairs.size(), k + kChunk); k < end; ++k) {
       const auto [f, g] = pairs[k];
-      int sx[3], st[3];
+      int sx[3], st[3] = {0, 0, 0};
       if (!may_meet(f, g, sx, st)) continue;
-      may[k] = 1;
+      Candidate m{int(k), {}, {}};
+      for (int i = 0; i < 3; ++i) {
+        m.sx[i] = static_cast<signed char>(sx[i]);
+        m.st[i] = static_cast<signed char>(st[i]);
+      }
+      meeting[c].push_back(m);
       if (sx[0] == 0 && sx[1] == 0 && sx[2] == 0) continue;
       for (int side = 0; side < 2; ++side) {
         const auto& F = soup_.face[side == 0 ? f : g];
@@ -174,12 +179,26 @@ void PairIntersector::prepare(const std::vector<std::pair<int, int>>& pairs, std
     const auto& F = soup_.face[keys[k].f];
     prepared_[k] = edge_plane_crossing(vp(keys[k].a), vp(keys[k].b), vp(F[0]), vp(F[1]), vp(F[2]));
   });
+  std::vector<Candidate> out;
+  for (auto& m : meeting) out.insert(out.end(), m.begin(), m.end());
+  return out;
 }
 
 bool PairIntersector::intersect(int f, int g, CutFaces& cf) {
   int sx[3], st[3];
   if (!may_meet(f, g, sx, st)) return false;
   if (sx[0] == 0 && sx[1] == 0 && sx[2] == 0) return coplanar(f, g, cf);
+  return intersect_crossing(f, g, sx, st, cf);
+}
+
+bool PairIntersector::intersect(const std::pair<int, int>& pair, const Candidate& c, CutFaces& cf) {
+  const int sx[3] = {c.sx[0], c.sx[1], c.sx[2]}, st[3] = {c.st[0], c.st[1], c.st[2]};
+  if (sx[0] == 0 && sx[1] == 0 && sx[2] == 0) return coplanar(pair.first, pair.second, cf);
+  return intersect_crossing(pair.first, pair.second, sx, st, cf);
+}
+
+// Both faces cross the other's plane (signs sx, st) and their sections may overlap.
+bool PairIntersector::intersect_crossing(int f, int g, const int sx[3], const int st[3], CutFaces& cf) {
   std::vector<int> a, b;
   plane_section(f, st, g, a);
   plane_section(g, sx, f, b);

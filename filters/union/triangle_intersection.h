@@ -23,10 +23,18 @@ public:
   /// point or along a segment, shared vertices and edges, and coplanar overlap.
   bool intersect(int f, int g, CutFaces& cf);
 
-  /// Decides in parallel which of `pairs` may meet (the rest cannot, and intersect()
-  /// need not see them: `may_meet` gets 0) and builds the edge-face crossings those
-  /// need, so intersect() only files them. Changes no output.
-  void prepare(const std::vector<std::pair<int, int>>& pairs, std::vector<char>& may_meet);
+  /// A pair that may meet, with the signs of each face's corners against the other's
+  /// plane (sx: g's corners against f; st: f's against g; coplanar when sx is all 0).
+  struct Candidate {
+    int pair;
+    signed char sx[3], st[3];
+  };
+  /// Decides in parallel which of `pairs` may meet (the rest cannot, and need not be
+  /// intersected) and builds the edge-face crossings those need, so that intersecting
+  /// them only files the points. Returns them in pair order. Changes no output.
+  std::vector<Candidate> prepare(const std::vector<std::pair<int, int>>& pairs);
+  /// intersect() for a candidate from prepare(): its signs are not computed again.
+  bool intersect(const std::pair<int, int>& pair, const Candidate& c, CutFaces& cf);
   /// Room for about `crossings` edge-face crossings in the cache.
   void reserve(size_t crossings) { edge_face_cache_.reserve(crossings); }
 
@@ -60,6 +68,7 @@ private:
   /// The first steps of intersect(): false if f and g certainly do not meet; else the
   /// signs of each face's corners against the other's plane (coplanar: all sx zero).
   bool may_meet(int f, int g, int sx[3], int st[3]) const;
+  bool intersect_crossing(int f, int g, const int sx[3], const int st[3], CutFaces& cf);
   /// The crossing of coplanar input edges (a, b) and (c, d), built once (neighbouring
   /// face pairs meet the same edge crossings again).
   int edge_edge_point(int a, int b, int c, int d, const Projection& pr);
