@@ -271,8 +271,54 @@ int drop_short_cycles(const TriMesh& mesh, const EdgeTable& edges, const VertexR
   return dropped;
 }
 
+// Sliver patches bounded by droppable ridges only: area under a tenth of a min_length square and
+// under 0.02 x the squared border length (a triangle with a smallest angle under ~10 degrees, a
+// strip ten times longer than wide), e.g. one sliver input face whose three edges are ridges, as a
+// scan's crease network makes. An element of this size cannot represent them, and keeping them
+// forces their slivers into the output as they stand. Their border ridges go, so they join their
+// neighbours. Small patches of good shape (a small cube's sides) stay.
+int drop_small_islands(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
+                       const std::vector<char>& keep, double min_length, Suppressed& s) {
+  const Flood flood = flood_patches(mesh, edges, edge_is_ridge);
+  std::vector<double> border(flood.count, 0.0), area(flood.count, 0.0);
+  for (size_t f = 0; f < mesh.face.size(); ++f) {
+    const auto& face = mesh.face[f];
+    area[flood.patch_of_face[f]] += 0.5 * ((face.cP(1) - face.cP(0)) ^ (face.cP(2) - face.cP(0))).Norm();
+  }
+  std::vector<char> fixed(flood.count, 0);  // touches an edge that never goes
+  for (int e = 0; e < edges.edge_count(); ++e) {
+    if (!edge_is_ridge[e]) continue;
+    const double length = edge_length(mesh, edges, e);
+    for (int k = 0; k < edges.valence(e); ++k) {
+      const int patch = flood.patch_of_face[edges.side(e, k).face];
+      border[patch] += length;
+      if (keep[e]) fixed[patch] = 1;
+    }
+  }
+  std::vector<char> island(flood.count, 0);
+  for (int p = 0; p < flood.count; ++p) island[p] = !fixed[p] && border[p] > 0 && area[p] < 0.1 * min_length * min_length &&
+                                           area[p] < 0.02 * border[p] * border[p];
+  int dropped = 0;
+  std::vector<char> counted(flood.count, 0);
+  for (int e = 0; e < edges.edge_count(); ++e) {
+    if (!edge_is_ridge[e] || keep[e]) continue;
+    bool on_island = false;
+    for (int k = 0; k < edges.valence(e); ++k) {
+      const int patch = flood.patch_of_face[edges.side(e, k).face];
+      if (!island[patch]) continue;
+      on_island = true;
+      if (!counted[patch]) { counted[patch] = 1; s.lines++; dropped++; }
+    }
+    if (!on_island) continue;
+    edge_is_ridge[e] = 0;
+    s.edges++;
+  }
+  return dropped;
+}
+
 // Feature-noise suppression: lines shorter than min_length with a dangling end, and short closed
-// lines (a loop from a junction back to it), are dropped; then short simple cycles. Repeated,
+// lines (a loop from a junction back to it), are dropped; then short simple cycles; then the
+// borders of small sliver patches. Repeated,
 // since a dropped branch can leave a junction with one ridge less. `keep` edges never go.
 Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
                                 const std::vector<char>& keep, const Params& p) {
@@ -302,6 +348,7 @@ Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std
     }
     const VertexRidges after = vertex_ridges(nv, edges, edge_is_ridge);
     dropped += drop_short_cycles(mesh, edges, after, edge_is_ridge, keep, p.min_line_length, s);
+    if (dropped == 0) dropped = drop_small_islands(mesh, edges, edge_is_ridge, keep, p.min_line_length, s);
     if (dropped == 0) return s;
   }
 }

@@ -67,7 +67,9 @@ RichParameterList FilterFeatureLinesPlugin::initParameterList(const QAction*, co
   list.addParam(RichPercentage("min_line_length", Scalarm(defaults.min_line_length), 0, Scalarm(diag),
                                "Minimum line length",
                                "Feature-noise suppression: lines shorter than this that end in the open (an end "
-                               "vertex on that one ridge only) and closed ridge loops shorter than this stop being "
+                               "vertex on that one ridge only), closed ridge loops shorter than this, and the borders "
+                               "of sliver patches (area under a tenth of this squared and under 0.02 x their "
+                               "border squared, e.g. one thin face whose three edges are ridges) stop being "
                                "ridges, repeatedly; then corners, lines and patches are found again. Absolute, or a "
                                "percentage of the bounding-box diagonal; use the element size you mesh with. "
                                "Boundary, non-manifold and selected edges always stay. 0 keeps every ridge."));

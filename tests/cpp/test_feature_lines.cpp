@@ -220,6 +220,29 @@ TEST(FeatureLines, ShortClosedLoopsAreDroppedAndLongOnesKept) {
   EXPECT_EQ(r.patch_count, 1);
 }
 
+// A flat rhombus A-E-B-D with its middle diagonal A-B bent into a sliver A-B-C (C lifted, its
+// normal 45 degrees off): A-B, B-C and C-A are ridges by angle and enclose a one-face patch.
+TEST(FeatureLines, SliverPatchesAreDroppedOnlyWhenTheyAreSmallAndThin) {
+  TriMesh m;
+  test::build(m, {{0, 0, 0}, {20, 0, 0}, {10, 0.3, 0.3}, {10, 20, 0}, {10, -20, 0}},
+              {{0, 4, 1}, {0, 1, 2}, {0, 2, 3}, {2, 1, 3}});
+  features::Params p;
+  const auto strict = detect(m, p);
+  ASSERT_EQ(strict.ridge_edges, 7);  // 4 boundary + 3 around the sliver
+  ASSERT_EQ(strict.patch_count, 3);  // below A-B, the sliver, above A-B (split by no ridge)
+  // Area 4.24 and border 40: thin (4.24 < 0.02 x 40^2) and small (4.24 < 0.1 x 8^2): it goes.
+  p.min_line_length = 8.0;
+  const auto dropped = detect(m, p);
+  EXPECT_EQ(dropped.ridge_edges, 4);
+  EXPECT_EQ(dropped.patch_count, 1);
+  EXPECT_EQ(dropped.suppressed_ridge_edges, 3);
+  // Under 0.1 x 6^2 = 3.6 it is not small: it stays.
+  p.min_line_length = 6.0;
+  const auto kept = detect(m, p);
+  EXPECT_EQ(kept.ridge_edges, 7);
+  EXPECT_EQ(kept.patch_count, 3);
+}
+
 TEST(FeatureLines, NetworksWithoutDanglingEndsAreNeverDropped) {
   TriMesh m;
   test::cube(m, 2);  // every corner is on three ridges

@@ -59,9 +59,6 @@ def input_ridges(name: str, min_line_length: float):
 # Acceptance items a mesh does not meet yet at 1% / 30 degrees / min_line_length = target, with the
 # measured numbers (benchmarks/remesh.md); each is asserted at the weaker bound given instead.
 SHORTFALLS = {
-    # worst angle 6.63 vs 9.65: an input face whose three vertices are corners and whose three edges
-    # are ridges (an island patch) is an output face as it stands, and its smallest angle is 6.63
-    "organic/stanford-bunny.obj": {"worst_angle": 6.6},
     # 89.2% of the edges in range (MeshLab 87.5%): 1135 corners, about half within 0.7 x target of
     # another (short creases between the junctions of the scan's 30-degree ridge network); the
     # edges among and around them are short
