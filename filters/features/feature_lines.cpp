@@ -277,7 +277,9 @@ int drop_short_cycles(const TriMesh& mesh, const EdgeTable& edges, const VertexR
 // scan's crease network makes. An element of this size cannot represent them, and keeping them
 // forces their slivers into the output as they stand. Their border ridges go, so they join their
 // neighbours. Small patches of good shape (a small cube's sides) stay.
-int drop_small_islands(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
+constexpr double kSliverArea = 0.1, kSliverShape = 0.02;
+
+int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
                        const std::vector<char>& keep, double min_length, Suppressed& s) {
   const Flood flood = flood_patches(mesh, edges, edge_is_ridge);
   std::vector<double> border(flood.count, 0.0), area(flood.count, 0.0);
@@ -296,8 +298,9 @@ int drop_small_islands(const TriMesh& mesh, const EdgeTable& edges, std::vector<
     }
   }
   std::vector<char> island(flood.count, 0);
-  for (int p = 0; p < flood.count; ++p) island[p] = !fixed[p] && border[p] > 0 && area[p] < 0.1 * min_length * min_length &&
-                                           area[p] < 0.02 * border[p] * border[p];
+  for (int p = 0; p < flood.count; ++p)
+    island[p] = !fixed[p] && border[p] > 0 && area[p] < kSliverArea * min_length * min_length &&
+                area[p] < kSliverShape * border[p] * border[p];
   int dropped = 0;
   std::vector<char> counted(flood.count, 0);
   for (int e = 0; e < edges.edge_count(); ++e) {
@@ -348,7 +351,7 @@ Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std
     }
     const VertexRidges after = vertex_ridges(nv, edges, edge_is_ridge);
     dropped += drop_short_cycles(mesh, edges, after, edge_is_ridge, keep, p.min_line_length, s);
-    if (dropped == 0) dropped = drop_small_islands(mesh, edges, edge_is_ridge, keep, p.min_line_length, s);
+    if (dropped == 0) dropped = drop_sliver_patches(mesh, edges, edge_is_ridge, keep, p.min_line_length, s);
     if (dropped == 0) return s;
   }
 }
