@@ -1,0 +1,196 @@
+#!/usr/bin/env python3
+"""Bad inputs and bad parameters for every MeshRegrid filter: each call must return or refuse with
+a PyMeshLabException, leave the input layer as it was, write no NaN, and never crash or hang.
+
+Usage: .venv/bin/python scripts/fuzz_filters.py FIRST_SEED LAST_SEED [--timeout S]
+Seed s picks a filter (s % 5: features, remesh, union, healing, quad subdivision), an input
+(s // 5 % 16: a shared mesh as it is, scaled to 1e150 or 1e-150, with a NaN or an infinite
+coordinate, every face a repeated corner, a non-manifold fan, duplicated faces, two faces, three
+equal points, a point cloud, an empty mesh, a triangle soup, a quad mesh, two overlapping
+closed bodies, a mesh with unused vertices) and parameters drawn from the seed, in and out of
+their ranges (remesh targets from 0.5%: smaller ones are slow, not wrong). The shared mesh
+changes every 80 seeds (fandisk, bunny, rabbit.obj, angle_block.STL). Each case runs in its own
+process, so a crash or a hang is seen as such. Prints one line per seed and the failing seeds at
+the end; not part of the test suite (fuzz_remesh.py and fuzz_union.py damage the shared meshes
+in more ways for those two filters).
+"""
+import argparse
+import pathlib
+import subprocess
+import sys
+import time
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+DATA = REPO.parent / "shared" / "data"
+FILTERS = ["features", "remesh", "union", "healing", "quadsub"]
+INPUTS = ["as it is", "scaled to 1e150", "scaled to 1e-150", "a NaN coordinate", "an infinite coordinate",
+          "repeated corners", "non-manifold fan", "duplicated faces", "two faces", "three equal points",
+          "point cloud", "empty", "triangle soup", "quad mesh", "two overlapping bodies", "unused vertices"]
+
+CASE = r'''
+import hashlib
+import sys
+import numpy as np
+import meshregrid  # noqa: F401
+import pymeshlab
+seed, data = int(sys.argv[1]), sys.argv[2]
+rng = np.random.default_rng(seed)
+which, kind = seed % 5, seed // 5 % 16
+ms = pymeshlab.MeshSet()
+
+
+def add(v, f):
+    v = np.asarray(v, dtype=np.float64).reshape(-1, 3)
+    f = np.asarray(f, dtype=np.int32).reshape(-1, 3)
+    if len(v) == 0:  # pymeshlab makes no mesh from empty arrays: a cube with its vertices removed
+        ms.create_cube()
+        ms.set_selection_all()
+        ms.meshing_remove_selected_vertices()
+        return
+    ms.add_mesh(pymeshlab.Mesh(v, f) if len(f) else pymeshlab.Mesh(v))
+
+
+def shared(name):
+    m = pymeshlab.MeshSet()
+    m.load_new_mesh(f"{data}/{name}")
+    return m.current_mesh().vertex_matrix().copy(), m.current_mesh().face_matrix().copy()
+
+
+base = ["cad/fandisk.obj", "organic/stanford-bunny.obj", "multicomponent/rabbit.obj", "healing/angle_block.STL"]
+v, f = shared(base[seed // 80 % len(base)])
+if kind == 13:
+    ms.load_new_mesh(f"{data}/quad/torus_quad.off")
+elif kind == 14:
+    m = pymeshlab.MeshSet()
+    m.create_sphere(subdiv=2)
+    sv, sf = m.current_mesh().vertex_matrix(), m.current_mesh().face_matrix()
+    add(np.concatenate([sv, sv + 0.3]), np.concatenate([sf, sf + len(sv)]))
+else:
+    if kind == 1:
+        v = v * 1e150
+    elif kind == 2:
+        v = v * 1e-150
+    elif kind == 3:
+        v[int(rng.integers(len(v)))] = [np.nan, 0, 0]
+    elif kind == 4:
+        v[int(rng.integers(len(v)))] = [0, np.inf, 0]
+    elif kind == 5:
+        f[:, 1] = f[:, 0]
+    elif kind == 6:
+        v, f = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]], [[0, 1, 2], [1, 0, 3], [0, 1, 4]]
+    elif kind == 7:
+        f = np.concatenate([f, f])
+    elif kind == 8:
+        f = f[:2]
+    elif kind == 9:
+        v, f = [[1, 1, 1]] * 3, [[0, 1, 2]]
+    elif kind == 10:
+        f = np.zeros((0, 3))
+    elif kind == 11:
+        v, f = np.zeros((0, 3)), np.zeros((0, 3))
+    elif kind == 12:
+        v, f = rng.random((90, 3)), np.arange(90).reshape(30, 3)
+    elif kind == 15:
+        v = np.concatenate([v, rng.random((50, 3))])
+    add(v, f)
+
+pick = lambda *xs: xs[int(rng.integers(len(xs)))]
+bad_parameters = rng.random() < 0.3  # else every parameter is in its range, so the mesh is what is tested
+
+
+def value(good, bad):
+    """A parameter value from `good`, or (in a bad-parameter case, half the time) from `bad`."""
+    return pick(*bad) if bad_parameters and rng.random() < 0.5 else pick(*good)
+shown = {}  # what each length parameter was, for the report
+
+
+def length(key, good):
+    """A length parameter: a percentage of the diagonal from `good`, or in a bad-parameter case
+    0% or 100% or an absolute value that may be out of range (pymeshlab itself refuses
+    percentages outside [0, 100])."""
+    if not bad_parameters or rng.random() < 0.5:
+        x = float(pick(*good) if not bad_parameters else pick(0, 100))
+        shown[key] = f"{x}%"
+        return pymeshlab.PercentageValue(x)
+    x = float(pick(-1.0, 0.0, 1e-300, 0.01, 1e300, float("nan")))
+    shown[key] = repr(x)
+    return pymeshlab.PureValue(x)
+
+
+def lengths(**kw):
+    """Length parameters, each with its list of good percentages."""
+    return {k: length(k, good) for k, good in kw.items()}
+
+if which == 0:
+    name, kw = "compute_feature_lines_and_patches", dict(
+        ridge_angle=float(value([1, 30, 90, 179.9], [-10, 0, 180, 1e9])), corner_angle=float(value([0, 45, 180], [-1, 200])),
+        min_patch_faces=int(value([0, 5], [-1, 10**9])), create_lines_layer=bool(pick(True, False)),
+        **lengths(min_line_length=[0.1, 1, 5]))
+elif which == 1:
+    name, kw = "meshing_advancing_front_remesh", dict(
+        ridge_angle=float(value([30, 60], [0, 180])), recovery=int(pick(0, 1, 2, 3)),
+        gradation=float(value([1.3, 2], [0.5, 1e9])), **lengths(target_length=[0.5, 1, 5], min_line_length=[0.1, 1, 5]))
+elif which == 2:
+    name, kw = "generate_surface_intersection_union", dict(bodies=int(pick(0, 1)),
+                                                              sliver_angle=float(value([0, 10, 45], [-5, 90])))
+elif which == 3:
+    name, kw = "meshing_heal_patch_gaps", dict(patch_source=int(pick(0, 1)), feature_angle=float(value([0, 30], [-1, 180])),
+                                               **lengths(vertex_tolerance=[0.01, 0.1, 1], edge_tolerance=[0, 0.1, 1]))
+else:
+    name, kw = "meshing_surface_subdivision_interpolatory_quad", dict(
+        iterations=int(value([0, 1, 2], [-1, 3])), w=float(value([0, 1, 1.5], [-1, 1e9])),
+        crease_angle=float(value([0, 30], [-1, 180])), adaptive=int(pick(0, 1)), **lengths(error_threshold=[0.01, 0.1, 1]))
+
+def snapshot(m):
+    return hashlib.sha1(m.vertex_matrix().tobytes() + m.face_matrix().tobytes()).hexdigest()
+
+
+print(f"calling {name} {dict(kw, **shown)}", flush=True)  # shown if the call then hangs
+before = [snapshot(ms.mesh(i)) for i in range(ms.mesh_number())]
+first = ms.mesh_number()
+try:
+    r = getattr(ms, name)(**kw)
+    layers = [ms.mesh(i) for i in range(first, ms.mesh_number())] or [ms.current_mesh()]
+    if any(not np.isfinite(m.vertex_matrix()).all() for m in layers if kind not in (3, 4)):
+        print("NaN or infinite coordinates written")
+        sys.exit(3)
+    status = f"ok, {sum(m.face_number() for m in layers)} faces"
+except pymeshlab.PyMeshLabException as e:
+    status = "refused: " + str(e).strip().splitlines()[-1][:140]
+    if [snapshot(ms.mesh(i)) for i in range(first)] != before:
+        print("the input changed although the filter refused: " + status)
+        sys.exit(4)
+print(f"{name} {dict(kw, **shown)}: {status}")
+'''
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("first", type=int)
+    ap.add_argument("last", type=int)
+    ap.add_argument("--timeout", type=float, default=120)
+    args = ap.parse_args()
+    failing = []
+    for seed in range(args.first, args.last):
+        t = time.perf_counter()
+        label = f"{FILTERS[seed % 5]}, {INPUTS[seed // 5 % 16]}"
+        try:
+            p = subprocess.run([sys.executable, "-c", CASE, str(seed), str(DATA)], capture_output=True, text=True,
+                               timeout=args.timeout)
+            if p.returncode != 0:
+                failing.append(seed)
+                last = (p.stdout.strip().splitlines() or p.stderr.strip().splitlines() or [""])[-1]
+                status = f"FAILED (exit {p.returncode}): {last[:300]}"
+            else:
+                status = p.stdout.strip().splitlines()[-1][:300]
+        except subprocess.TimeoutExpired as e:
+            failing.append(seed)
+            out = e.stdout.decode() if isinstance(e.stdout, bytes) else (e.stdout or "")
+            status = f"TIMED OUT after {args.timeout:.0f} s: {(out.strip().splitlines() or [''])[-1][:300]}"
+        print(f"seed {seed} ({label}): {status} [{time.perf_counter() - t:.1f} s]", flush=True)
+    print("failing seeds:", failing or "none")
+    return 1 if failing else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
