@@ -134,11 +134,12 @@ elif which == 2:
     name, kw = "generate_surface_intersection_union", dict(bodies=int(pick(0, 1)),
                                                               sliver_angle=float(value([0, 10, 45], [-5, 90])))
 elif which == 3:
-    name, kw = "meshing_heal_patch_gaps", dict(patch_source=int(pick(0, 1)), feature_angle=float(value([0, 30], [-1, 180])),
+    name, kw = "meshing_heal_patch_gaps", dict(patch_source=int(pick(0, 1)),
+                                               feature_angle=float(value([1, 30], [-1, 0, 180])),
                                                **lengths(vertex_tolerance=[0.01, 0.1, 1], edge_tolerance=[0, 0.1, 1]))
 else:
     name, kw = "meshing_surface_subdivision_interpolatory_quad", dict(
-        iterations=int(value([0, 1, 2], [-1, 3])), w=float(value([0, 1, 1.5], [-1, 1e9])),
+        iterations=int(value([1, 2], [-1, 0, 9])), w=float(value([0, 1, 1.2], [-1, 1.5, 1e9])),
         crease_angle=float(value([0, 30], [-1, 180])), adaptive=int(pick(0, 1)), **lengths(error_threshold=[0.01, 0.1, 1]))
 
 def snapshot(m):

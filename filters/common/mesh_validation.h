@@ -21,4 +21,7 @@ int count_duplicate_faces(const TriMesh& mesh);
 ///        layer of zero thickness, whose every edge is non-manifold.
 void require_no_duplicate_faces(const TriMesh& mesh, const std::string& what = "the input mesh");
 
+/// \throw InvalidInput if every face has zero area (no surface to work on).
+void require_some_area(const TriMesh& mesh, const std::string& what = "the input mesh");
+
 }  // namespace mr

@@ -250,6 +250,7 @@ FrontResult mesh_patch(OutputMesh& out, const std::vector<FrontSide>& front, int
 Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
   require_triangle_surface(input);
   require_no_duplicate_faces(input);
+  require_some_area(input);
   Box3 box;
   for (const auto& v : input.vert) box.Add(v.cP());
   Result result;

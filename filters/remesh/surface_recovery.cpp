@@ -2,6 +2,7 @@
 
 #include "remesh/triangle_geometry.h"
 
+#include <cmath>
 #include <cstdint>
 #include <set>
 #include <unordered_map>
@@ -78,6 +79,8 @@ int recover_surface(OutputMesh& out, const Surface& s, Recovery mode) {
     const auto& t = s.faces[f];
     std::array<double, 3> l;
     closest_point_on_triangle(out.points[v], s.points[t[0]], s.points[t[1]], s.points[t[2]], l);
+    // A degenerate host face has no barycentric coordinates: the point stays as it is.
+    if (!(std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2]))) continue;
     Point3 p = out.points[v];
     if (mode == Recovery::ClosestVertex) {
       int best = -1;
@@ -94,6 +97,9 @@ int recover_surface(OutputMesh& out, const Surface& s, Recovery mode) {
     } else {
       p = cubic_point(s, normals, f, l);
     }
+    // Normals averaged over degenerate faces only are zero: whatever the formula makes of
+    // them, a point that is not finite stays where it was.
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) continue;
     if ((p - out.points[v]).Norm() > 0) ++moved;
     out.points[v] = p;
   }

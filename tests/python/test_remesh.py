@@ -396,6 +396,19 @@ def test_bad_input_raises_and_changes_nothing():
     assert double.mesh_number() == 2
     assert_unchanged(before_double, double.current_mesh())
 
+    # Every face with a repeated corner (no area anywhere): quadratic recovery wrote NaN points
+    # (scripts/fuzz_filters.py seed 186); it is refused up front.
+    flat = pymeshlab.MeshSet()
+    flat.create_cube()
+    f = flat.current_mesh().face_matrix().copy()
+    f[:, 1] = f[:, 0]
+    flat.add_mesh(pymeshlab.Mesh(flat.current_mesh().vertex_matrix(), f), "degenerate")
+    before_flat = snapshot(flat.current_mesh())
+    with raises_on(flat, "no face of nonzero area"):
+        flat.meshing_advancing_front_remesh(recovery=2)
+    assert flat.mesh_number() == 2
+    assert_unchanged(before_flat, flat.current_mesh())
+
 
 def test_damaged_input_that_no_front_can_close_returns_and_reports_it():
     # Fuzzing found this: blade.off with every 30th vertex (random, seed 3) moved onto the next

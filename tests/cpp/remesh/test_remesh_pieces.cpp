@@ -5,6 +5,7 @@
 #include "remesh/patch_retry.h"
 #include "remesh/size_field.h"
 #include "remesh/strip_staggering.h"
+#include "remesh/surface_recovery.h"
 #include "remesh/surface_locator.h"
 #include "remesh/triangle_geometry.h"
 #include "shapes.h"
@@ -347,4 +348,25 @@ TEST(RemeshPieces, StripLineTakesThePointsAcrossShiftedAlongTheOtherSide) {
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(at[7 + k], 5.28 + (k + 1) * 4.72 / 5, 1e-12);
   EXPECT_EQ(at.back(), 10.0);
   EXPECT_TRUE(staggered_positions(polyline, cumulative, {Point3(5, 1, 0)}, 0.1).empty());
+}
+
+// A point whose host face is degenerate (a scan's zero-area face; here the only face around its
+// corners, so their averaged normals are zero too) has no barycentric coordinates: quadratic and
+// cubic recovery leave it where it is instead of writing NaN.
+TEST(RemeshPieces, RecoveryLeavesPointsOnDegenerateHostFacesAsTheyAre) {
+  // Face 0 has two equal corners, face 2 three collinear ones.
+  const Surface s = Surface::from_arrays({Point3(0, 0, 0), Point3(0, 0, 0), Point3(2, 0, 0), Point3(1, 0, 0),
+                                          Point3(5, 5, 0), Point3(6, 5, 0), Point3(5, 6, 0)},
+                                         {{0, 1, 2}, {4, 5, 6}, {0, 3, 2}}, {});
+  for (Recovery mode : {Recovery::Quadratic, Recovery::Cubic}) {
+    for (int host : {0, 2}) {
+      OutputMesh out;
+      const int on_degenerate = out.add_point(Point3(0.5, 0, 0), host, PointKind::Free);
+      const int on_good = out.add_point(Point3(5.2, 5.2, 0), 1, PointKind::Free);
+      recover_surface(out, s, mode);
+      EXPECT_EQ(out.points[on_degenerate], Point3(0.5, 0, 0));
+      for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isfinite(out.points[on_good][k]));
+      EXPECT_NEAR(out.points[on_good][2], 0.0, 1e-12);  // a flat face: recovery keeps the plane
+    }
+  }
 }

@@ -115,6 +115,9 @@ TEST(RemeshWhole, BadInputThrows) {
   EXPECT_THROW(run(m, 0.0), InvalidInput);
   EXPECT_THROW(run(m, -1.0), InvalidInput);
   EXPECT_THROW(run(m, 10.0), InvalidInput);  // diagonal is about 3.46
+  // Every face degenerate (all corners on one line): no surface to remesh.
+  for (auto& v : m.vert) v.P() = Point3(v.P()[0] + v.P()[1] + v.P()[2], 0, 0);
+  EXPECT_THROW(run(m, 0.5), InvalidInput);
 }
 
 TEST(RemeshWhole, PeakSharperThanTheElementsGetsAnOutputVertexAtItsTip) {
