@@ -4,10 +4,11 @@ a PyMeshLabException, leave the input layer as it was, write no NaN, and never c
 
 Usage: .venv/bin/python scripts/fuzz_filters.py FIRST_SEED LAST_SEED [--timeout S]
 Seed s picks a filter (s % 5: features, remesh, union, healing, quad subdivision), an input
-(s // 5 % 16: a shared mesh as it is, scaled to 1e150 or 1e-150, with a NaN or an infinite
+(s // 5 % 20: a shared mesh as it is, scaled to 1e150 or 1e-150, with a NaN or an infinite
 coordinate, every face a repeated corner, a non-manifold fan, duplicated faces, two faces, three
 equal points, a point cloud, an empty mesh, a triangle soup, a quad mesh, two overlapping
-closed bodies, a mesh with unused vertices) and parameters drawn from the seed, in and out of
+closed bodies, a mesh with unused vertices, half its faces flipped, offset by 1e12, a Moebius
+strip, a 2000-face fan) and parameters drawn from the seed, in and out of
 their ranges (remesh targets from 0.5%: smaller ones are slow, not wrong). The shared mesh
 changes every 80 seeds (fandisk, bunny, rabbit.obj, angle_block.STL). Each case runs in its own
 process, so a crash or a hang is seen as such. Prints one line per seed and the failing seeds at
@@ -25,7 +26,8 @@ DATA = REPO.parent / "shared" / "data"
 FILTERS = ["features", "remesh", "union", "healing", "quadsub"]
 INPUTS = ["as it is", "scaled to 1e150", "scaled to 1e-150", "a NaN coordinate", "an infinite coordinate",
           "repeated corners", "non-manifold fan", "duplicated faces", "two faces", "three equal points",
-          "point cloud", "empty", "triangle soup", "quad mesh", "two overlapping bodies", "unused vertices"]
+          "point cloud", "empty", "triangle soup", "quad mesh", "two overlapping bodies", "unused vertices",
+          "half the faces flipped", "offset by 1e12", "Moebius strip", "a 2000-face fan"]
 
 CASE = r'''
 import hashlib
@@ -35,7 +37,7 @@ import meshregrid  # noqa: F401
 import pymeshlab
 seed, data = int(sys.argv[1]), sys.argv[2]
 rng = np.random.default_rng(seed)
-which, kind = seed % 5, seed // 5 % 16
+which, kind = seed % 5, seed // 5 % 20
 ms = pymeshlab.MeshSet()
 
 
@@ -92,6 +94,20 @@ else:
         v, f = rng.random((90, 3)), np.arange(90).reshape(30, 3)
     elif kind == 15:
         v = np.concatenate([v, rng.random((50, 3))])
+    elif kind == 16:
+        f[::2] = f[::2, ::-1]
+    elif kind == 17:
+        v = v + 1e12
+    elif kind == 18:  # a band of 40 quads with a half twist: P(2 pi, s) = P(0, -s)
+        n, t = 40, np.linspace(0, 2 * np.pi, 40, endpoint=False)
+        v = np.concatenate([np.stack([(1 + w * np.cos(t / 2)) * np.cos(t), (1 + w * np.cos(t / 2)) * np.sin(t),
+                                      w * np.sin(t / 2)], 1) for w in (-0.3, 0.3)])
+        f = [[i, n + i, n + i + 1] for i in range(n - 1)] + [[i, n + i + 1, i + 1] for i in range(n - 1)]
+        f += [[n - 1, 2 * n - 1, 0], [n - 1, 0, n]]  # the last quad joins the sides crosswise
+    elif kind == 19:  # one vertex with 2000 faces around it
+        t = np.linspace(0, 2 * np.pi, 2000, endpoint=False)
+        v = np.concatenate([[[0, 0, 0.2]], np.stack([np.cos(t), np.sin(t), 0 * t], 1)])
+        f = np.array([[0, 1 + i, 1 + (i + 1) % 2000] for i in range(2000)])
     add(v, f)
 
 pick = lambda *xs: xs[int(rng.integers(len(xs)))]
@@ -174,7 +190,7 @@ def main():
     failing = []
     for seed in range(args.first, args.last):
         t = time.perf_counter()
-        label = f"{FILTERS[seed % 5]}, {INPUTS[seed // 5 % 16]}"
+        label = f"{FILTERS[seed % 5]}, {INPUTS[seed // 5 % 20]}"
         try:
             p = subprocess.run([sys.executable, "-c", CASE, str(seed), str(DATA)], capture_output=True, text=True,
                                timeout=args.timeout)

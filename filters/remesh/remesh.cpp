@@ -1,5 +1,6 @@
 #include "remesh/remesh.h"
 
+#include "common/coherent_orientation.h"
 #include "common/errors.h"
 #include "common/mesh_validation.h"
 #include "features/feature_lines.h"
@@ -245,12 +246,34 @@ FrontResult mesh_patch(OutputMesh& out, const std::vector<FrontSide>& front, int
   return r;
 }
 
+// The input itself, or, where a careless export flipped some faces, a copy with one orientation
+// per part: the host-face search compares normals and the fronts take their direction from the
+// faces (half of fandisk's faces flipped at 5%: 88 s and 1010 faces with open sides, instead of
+// 0.2 s).
+const TriMesh& coherently_oriented(const TriMesh& input, TriMesh& copy) {
+  if (count_misoriented_edges(input) == 0) return input;
+  vcg::tri::Allocator<TriMesh>::AddVertices(copy, input.vert.size());
+  for (size_t v = 0; v < input.vert.size(); ++v) {
+    copy.vert[v].P() = input.vert[v].cP();
+    copy.vert[v].Flags() = input.vert[v].cFlags();
+  }
+  vcg::tri::Allocator<TriMesh>::AddFaces(copy, input.face.size());
+  for (size_t f = 0; f < input.face.size(); ++f) {
+    for (int z = 0; z < 3; ++z) copy.face[f].V(z) = &copy.vert[vcg::tri::Index(input, input.face[f].cV(z))];
+    copy.face[f].Flags() = input.face[f].cFlags();  // selected edges (ridges) go along
+  }
+  orient_coherently(copy);
+  return copy;
+}
+
 }  // namespace
 
-Result remesh(const TriMesh& input, const Params& params, TriMesh& output) {
-  require_triangle_surface(input);
-  require_no_duplicate_faces(input);
-  require_some_area(input);
+Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
+  require_triangle_surface(given);
+  require_no_duplicate_faces(given);
+  require_some_area(given);
+  TriMesh oriented;
+  const TriMesh& input = coherently_oriented(given, oriented);
   Box3 box;
   for (const auto& v : input.vert) box.Add(v.cP());
   Result result;
