@@ -15,11 +15,10 @@ process, so a crash or a hang is seen as such. Prints one line per seed and the 
 the end; not part of the test suite (fuzz_remesh.py and fuzz_union.py damage the shared meshes
 in more ways for those two filters).
 """
-import argparse
 import pathlib
-import subprocess
 import sys
-import time
+
+from fuzz_cases import run_seeds, seed_range
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 DATA = REPO.parent / "shared" / "data"
@@ -182,31 +181,8 @@ print(f"{name} {dict(kw, **shown)}: {status}")
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("first", type=int)
-    ap.add_argument("last", type=int)
-    ap.add_argument("--timeout", type=float, default=120)
-    args = ap.parse_args()
-    failing = []
-    for seed in range(args.first, args.last):
-        t = time.perf_counter()
-        label = f"{FILTERS[seed % 5]}, {INPUTS[seed // 5 % 20]}"
-        try:
-            p = subprocess.run([sys.executable, "-c", CASE, str(seed), str(DATA)], capture_output=True, text=True,
-                               timeout=args.timeout)
-            if p.returncode != 0:
-                failing.append(seed)
-                last = (p.stdout.strip().splitlines() or p.stderr.strip().splitlines() or [""])[-1]
-                status = f"FAILED (exit {p.returncode}): {last[:300]}"
-            else:
-                status = p.stdout.strip().splitlines()[-1][:300]
-        except subprocess.TimeoutExpired as e:
-            failing.append(seed)
-            out = e.stdout.decode() if isinstance(e.stdout, bytes) else (e.stdout or "")
-            status = f"TIMED OUT after {args.timeout:.0f} s: {(out.strip().splitlines() or [''])[-1][:300]}"
-        print(f"seed {seed} ({label}): {status} [{time.perf_counter() - t:.1f} s]", flush=True)
-    print("failing seeds:", failing or "none")
-    return 1 if failing else 0
+    seeds, timeout = seed_range(__doc__, 120)
+    return run_seeds(CASE, seeds, lambda seed: (seed, DATA), lambda seed: f"{FILTERS[seed % 5]}, {INPUTS[seed // 5 % 20]}", timeout)
 
 
 if __name__ == "__main__":

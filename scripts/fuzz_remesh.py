@@ -10,11 +10,10 @@ flatten one axis, a shifted copy added; target length and ridge angle are drawn 
 Each case runs in its own process, so a crash or a hang is seen as such. Prints one line per
 seed and the failing seeds at the end; not part of the test suite.
 """
-import argparse
 import pathlib
-import subprocess
 import sys
-import time
+
+from fuzz_cases import run_seeds, seed_range
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 DATA = REPO.parent / "shared" / "data"
@@ -66,31 +65,8 @@ except pymeshlab.PyMeshLabException as e:
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("first", type=int)
-    ap.add_argument("last", type=int)
-    ap.add_argument("--timeout", type=float, default=300)
-    args = ap.parse_args()
-    failing = []
-    for seed in range(args.first, args.last):
-        mesh = MESHES[seed % 4]
-        t = time.perf_counter()
-        try:
-            p = subprocess.run([sys.executable, "-c", CASE, str(seed), str(DATA / mesh)], capture_output=True,
-                               text=True, timeout=args.timeout)
-            took = time.perf_counter() - t
-            if p.returncode != 0:
-                failing.append(seed)
-                status = f"CRASHED (exit {p.returncode}): {p.stderr.strip().splitlines()[-1:] }"
-            else:
-                status = p.stdout.strip().splitlines()[-1]
-        except subprocess.TimeoutExpired:
-            took = time.perf_counter() - t
-            failing.append(seed)
-            status = f"TIMED OUT after {args.timeout:.0f} s"
-        print(f"seed {seed} {mesh} ({DAMAGES[seed % 7]}): {status} [{took:.1f} s]", flush=True)
-    print("failing seeds:", failing or "none")
-    return 1 if failing else 0
+    seeds, timeout = seed_range(__doc__, 300)
+    return run_seeds(CASE, seeds, lambda seed: (seed, DATA / MESHES[seed % 4]), lambda seed: f"{MESHES[seed % 4]}, {DAMAGES[seed % 7]}", timeout)
 
 
 if __name__ == "__main__":
