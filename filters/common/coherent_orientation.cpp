@@ -17,11 +17,6 @@ bool same_direction(const TriMesh& mesh, const EdgeTable& edges, int e) {
   return vertex(mesh, a.face, a.side) == vertex(mesh, b.face, b.side);
 }
 
-double area(const TriMesh& mesh, int f) {
-  const auto& t = mesh.face[f];
-  return ((t.cP(1) - t.cP(0)) ^ (t.cP(2) - t.cP(0))).Norm();
-}
-
 }  // namespace
 
 int count_misoriented_edges(const TriMesh& mesh) {
@@ -48,7 +43,7 @@ CoherentOrientation orient_coherently(TriMesh& mesh) {
       const int f = stack.back();
       stack.pop_back();
       part.push_back(f);
-      (flip[f] ? flipped_area : kept_area) += area(mesh, f);
+      (flip[f] ? flipped_area : kept_area) += vcg::DoubleArea(mesh.face[f]);
       for (int z = 0; z < 3; ++z) {
         const int e = edges.edge_of(f, z);
         if (e < 0 || edges.valence(e) != 2) continue;

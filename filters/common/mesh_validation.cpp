@@ -55,7 +55,7 @@ void require_no_duplicate_faces(const TriMesh& mesh, const std::string& what) {
 
 void require_some_area(const TriMesh& mesh, const std::string& what) {
   for (const auto& f : mesh.face)
-    if (((f.cP(1) - f.cP(0)) ^ (f.cP(2) - f.cP(0))).SquaredNorm() > 0) return;
+    if (vcg::DoubleArea(f) > 0) return;
   throw InvalidInput(what + " has no face of nonzero area (every face is degenerate: a repeated or "
                      "collinear corner): there is no surface to work on (Cleaning and Repairing > Remove "
                      "Zero Area Faces removes them)");

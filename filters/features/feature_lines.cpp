@@ -283,10 +283,7 @@ int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector
                        const std::vector<char>& keep, double min_length, Suppressed& s) {
   const Flood flood = flood_patches(mesh, edges, edge_is_ridge);
   std::vector<double> border(flood.count, 0.0), area(flood.count, 0.0);
-  for (size_t f = 0; f < mesh.face.size(); ++f) {
-    const auto& face = mesh.face[f];
-    area[flood.patch_of_face[f]] += 0.5 * ((face.cP(1) - face.cP(0)) ^ (face.cP(2) - face.cP(0))).Norm();
-  }
+  for (size_t f = 0; f < mesh.face.size(); ++f) area[flood.patch_of_face[f]] += 0.5 * vcg::DoubleArea(mesh.face[f]);
   std::vector<char> fixed(flood.count, 0);  // touches an edge that never goes
   for (int e = 0; e < edges.edge_count(); ++e) {
     if (!edge_is_ridge[e]) continue;

@@ -41,7 +41,7 @@ struct Result {
   int non_manifold_edges = 0;
   int patch_count = 0;
   int merged_patches = 0;     ///< patches removed by the minimum-size merge
-  int suppressed_lines = 0;   ///< short dangling lines and loops dropped by min_line_length
+  int suppressed_lines = 0;   ///< short dangling lines, loops and sliver patches dropped by min_line_length
   int suppressed_ridge_edges = 0;  ///< their ridge edges
 };
 

@@ -17,6 +17,8 @@
 #include "remesh/vertex_snapping.h"
 #include "remesh/deviation_swaps.h"
 
+#include <vcg/complex/append.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -252,16 +254,7 @@ FrontResult mesh_patch(OutputMesh& out, const std::vector<FrontSide>& front, int
 // 0.2 s).
 const TriMesh& coherently_oriented(const TriMesh& input, TriMesh& copy) {
   if (count_misoriented_edges(input) == 0) return input;
-  vcg::tri::Allocator<TriMesh>::AddVertices(copy, input.vert.size());
-  for (size_t v = 0; v < input.vert.size(); ++v) {
-    copy.vert[v].P() = input.vert[v].cP();
-    copy.vert[v].Flags() = input.vert[v].cFlags();
-  }
-  vcg::tri::Allocator<TriMesh>::AddFaces(copy, input.face.size());
-  for (size_t f = 0; f < input.face.size(); ++f) {
-    for (int z = 0; z < 3; ++z) copy.face[f].V(z) = &copy.vert[vcg::tri::Index(input, input.face[f].cV(z))];
-    copy.face[f].Flags() = input.face[f].cFlags();  // selected edges (ridges) go along
-  }
+  vcg::tri::Append<TriMesh, TriMesh>::MeshCopyConst(copy, input);  // flags (selected edges) too
   orient_coherently(copy);
   return copy;
 }
