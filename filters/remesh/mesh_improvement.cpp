@@ -2,6 +2,7 @@
 
 #include "remesh/defect_reduction.h"
 #include "remesh/face_rings.h"
+#include "remesh/length_equalisation.h"
 #include "remesh/side_faces.h"
 #include "remesh/triangle_geometry.h"
 
@@ -25,6 +26,11 @@ constexpr double kValenceFloor = 35.0 * 3.14159265358979323846 / 180.0;
 // output-to-input distance at 1% grew from 0.00291 to 0.00301 of the diagonal: uneven chords
 // along curved ridges; from 20 it is 0.00284. Fandisk's crease tip needs 17.4 -> 19.4.)
 constexpr double kSlideBelow = 20.0 * 3.14159265358979323846 / 180.0;
+
+// Moves for edge lengths may lower a face's smallest angle down to this (radians), never below
+// its old one if that was lower. (Armadillo at 1%, 30-degree ridges: edges in range 90.5 ->
+// 93.0%, mean minimum angle unchanged; from 35 degrees 92.4%.)
+constexpr double kLengthFloor = 30.0 * 3.14159265358979323846 / 180.0;
 
 // Sweeps of the post-pass that also search swap sequences against valence defects.
 constexpr int kDefectSweeps = 2;
@@ -163,7 +169,7 @@ std::vector<char> region_around(const OutputMesh& out, const std::vector<int>& m
 }  // namespace
 
 ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
-                               const SurfaceLocator& locator, int iterations, std::vector<LinePath> line_paths,
+                               const SurfaceLocator& locator, const SizeField& size, int iterations, std::vector<LinePath> line_paths,
                                const std::vector<int>& moved) {
   const std::vector<char> region = region_around(out, moved);
   std::vector<char> movable(region);
@@ -181,10 +187,15 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
     DefectReductionResult dr;
     if (it < kDefectSweeps) dr = reduce_valence_defects(out, fixed, locator, region, movable, floor);
     swaps += dr.swaps;
-    const int moves = smooth_pass(out, locator, movable) + dr.moves;
+    int moves = smooth_pass(out, locator, movable) + dr.moves;
+    // Edge lengths last in each sweep: the swaps and smoothing above chose the shapes, these
+    // moves only trade angles above kLengthFloor for lengths in range.
+    const int collapsed = collapse_short_edges(out, fixed, locator, size, movable, kLengthFloor);
+    moves += relax_edge_lengths(out, locator, size, movable, kLengthFloor);
+    r.collapsed += collapsed;
     r.swaps += swaps;
     r.moves += moves;
-    if (swaps == 0 && moves == 0) break;
+    if (swaps == 0 && moves == 0 && collapsed == 0) break;
   }
   // Line points slide last, where swaps and smoothing left bad faces around them; the free
   // points around a moved one are smoothed again.

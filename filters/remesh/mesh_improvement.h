@@ -2,12 +2,15 @@
 // smoothing of free points projected back onto the input. Angle swaps and smoothing raise
 // the smallest angle of the faces they touch; valence swaps (towards 6 neighbours) keep
 // their faces above 35 degrees or their old smallest angle, so the mesh's minimum angle
-// never drops. Feature edges are never swapped, corners never move and line points only slide
-// along their lines (line_sliding.h).
+// never drops. Then free points move, or go at short edges, for edge lengths within
+// [0.7, 1.4] x the size while their faces stay above 30 degrees or their old smallest angle
+// (length_equalisation.h). Feature edges are never swapped, corners never move and line points
+// only slide along their lines (line_sliding.h).
 #pragma once
 
 #include "remesh/line_sliding.h"
 #include "remesh/output_mesh.h"
+#include "remesh/size_field.h"
 #include "remesh/surface_locator.h"
 
 #include <array>
@@ -18,6 +21,7 @@ namespace mr::remesh {
 struct ImprovementResult {
   int swaps = 0;
   int moves = 0;
+  int collapsed = 0;  ///< free points removed by collapsing a short edge
 };
 
 /// `feature_edges` are output edges that must stay (either orientation); the points of
@@ -25,7 +29,7 @@ struct ImprovementResult {
 /// (snapped onto input vertices) that must stay there; the pass then works only within two edges
 /// of them, the rest having had its pass already (empty: the whole mesh).
 ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
-                               const SurfaceLocator& locator, int iterations,
+                               const SurfaceLocator& locator, const SizeField& size, int iterations,
                                std::vector<LinePath> line_paths = {}, const std::vector<int>& moved = {});
 
 }  // namespace mr::remesh

@@ -319,9 +319,10 @@ Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
   }
 
   progress(params, 80, "Improving: swaps and smoothing");
-  const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations, ff.line_paths);
+  const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, size, params.improvement_iterations, ff.line_paths);
   result.swaps = ir.swaps;
   result.smoothed = ir.moves;
+  result.collapsed = ir.collapsed;
 
   progress(params, 86, "Snapping to input vertices the output cuts off");
   const std::vector<int> snapped = snap_to_far_vertices(out, locator, size);
@@ -330,9 +331,10 @@ Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
   // longer than 1.4 x target); the post-pass again around them, with them held on their vertices.
   if (!snapped.empty()) {
     const ImprovementResult again =
-        improve_mesh(out, ff.feature_edges, locator, params.improvement_iterations, {}, snapped);
+        improve_mesh(out, ff.feature_edges, locator, size, params.improvement_iterations, {}, snapped);
     result.swaps += again.swaps;
     result.smoothed += again.moves;
+    result.collapsed += again.collapsed;
   }
 
   // Last, pairs that bridge a crease stage 1 dropped turn to follow it (rocker-arm at 1%: 7 swaps,

@@ -171,6 +171,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"thin_patches", QVariant(r.thin_patches)},
       {"swaps", QVariant(r.swaps)},
       {"smoothed", QVariant(r.smoothed)},
+      {"collapsed", QVariant(r.collapsed)},
       {"snapped", QVariant(r.snapped)},
       {"surface_swaps", QVariant(r.surface_swaps)},
       {"target_length", QVariant(p.target_length)},

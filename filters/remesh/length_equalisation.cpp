@@ -1,0 +1,265 @@
+#include "remesh/length_equalisation.h"
+
+#include "remesh/face_rings.h"
+#include "remesh/triangle_geometry.h"
+
+#include <algorithm>
+#include <tuple>
+#include <utility>
+
+namespace mr::remesh {
+
+namespace {
+
+// A collapse may leave the removed point this far (x its size) from the new faces.
+constexpr double kCollapseDeviation = 0.05;
+// New faces may not turn by more than acos(0.7) from the faces they replace.
+constexpr double kFoldCos = 0.7;
+
+double face_angle(const OutputMesh& out, const std::array<int, 3>& f) {
+  return min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]);
+}
+
+// Size at point v: the size field at its place on its host face.
+double size_at(const OutputMesh& out, const SurfaceLocator& locator, const SizeField& size, int v) {
+  const int f = out.host[v];
+  if (f < 0) return size.max_size();
+  const Surface& s = locator.surface();
+  std::array<double, 3> bary;
+  closest_point_on_triangle(out.points[v], s.points[s.faces[f][0]], s.points[s.faces[f][1]], s.points[s.faces[f][2]],
+                            bary);
+  return size.at(f, bary);
+}
+
+class ShortEdgeCollapse {
+public:
+  ShortEdgeCollapse(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const SurfaceLocator& locator,
+                    const SizeField& size, const std::vector<char>& movable, double floor)
+      : out_(out), fixed_(fixed), movable_(movable), floor_(floor), star_(out.points.size()), h_(out.points.size()) {
+    for (size_t f = 0; f < out.faces.size(); ++f)
+      for (int v : out.faces[f]) star_[v].push_back(int(f));
+    for (size_t v = 0; v < out.points.size(); ++v) h_[v] = size_at(out, locator, size, int(v));
+  }
+
+  int run() {
+    // Shortest (relative to the size) first; ties by the points, so the order is deterministic.
+    std::vector<std::tuple<double, int, int>> edges;
+    for (const auto& t : out_.faces)
+      for (int z = 0; z < 3; ++z) {
+        const int a = t[z], b = t[(z + 1) % 3];
+        if (a > b || !(removable(a) || removable(b))) continue;
+        const double r = length(a, b) / h(a, b);
+        if (r < kShortEdge) edges.emplace_back(r, a, b);
+      }
+    std::sort(edges.begin(), edges.end());
+    int done = 0;
+    for (const auto& [ratio, a, b] : edges) {
+      (void)ratio;
+      int f, g;
+      if (!edge_faces(a, b, f, g)) continue;  // gone with an earlier collapse
+      double best = -1;
+      int remove = -1;
+      for (const auto& [v, w] : {std::pair{a, b}, std::pair{b, a}}) {
+        if (!removable(v)) continue;
+        const double q = quality_after(v, w);
+        if (q > best) best = q, remove = v;
+      }
+      if (remove < 0) continue;
+      collapse(remove, remove == a ? b : a);
+      ++done;
+    }
+    drop_dead_faces();
+    return done;
+  }
+
+private:
+  OutputMesh& out_;
+  const std::unordered_set<std::uint64_t>& fixed_;
+  const std::vector<char>& movable_;
+  double floor_;
+  std::vector<std::vector<int>> star_;  // live faces around each point
+  std::vector<double> h_;               // size at each point
+
+  bool removable(int v) const { return out_.kind[v] == PointKind::Free && movable_[v]; }
+  double length(int a, int b) const { return (out_.points[a] - out_.points[b]).Norm(); }
+  double h(int a, int b) const { return 0.5 * (h_[a] + h_[b]); }
+  Point3 normal(const std::array<int, 3>& t) const {
+    return unit_normal(out_.points[t[0]], out_.points[t[1]], out_.points[t[2]]);
+  }
+
+  // The two faces on edge a-b, when it is an inner edge of one patch and not a feature edge.
+  bool edge_faces(int a, int b, int& f, int& g) const {
+    f = g = -1;
+    if (fixed_.count(OutputMesh::edge_key(a, b))) return false;
+    for (int k : star_[a]) {
+      const auto& t = out_.faces[k];
+      if (t[0] != b && t[1] != b && t[2] != b) continue;
+      if (f < 0) f = k;
+      else if (g < 0) g = k;
+      else return false;
+    }
+    return g >= 0 && out_.face_patch[f] == out_.face_patch[g];
+  }
+
+  std::vector<int> neighbours(int v) const {
+    std::vector<int> n;
+    for (int k : star_[v])
+      for (int u : out_.faces[k])
+        if (u != v) n.push_back(u);
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+    return n;
+  }
+
+  // Smallest angle of the faces after free point v moves onto w, or -1 when that is not allowed.
+  double quality_after(int v, int w) const {
+    int f, g;
+    if (!edge_faces(v, w, f, g)) return -1;
+    // Link condition: v and w share no neighbour but the third points of f and g.
+    std::vector<int> opposite;
+    for (int k : {f, g})
+      for (int u : out_.faces[k])
+        if (u != v && u != w) opposite.push_back(u);
+    std::sort(opposite.begin(), opposite.end());
+    const std::vector<int> nv = neighbours(v), nw = neighbours(w);
+    std::vector<int> common;
+    std::set_intersection(nv.begin(), nv.end(), nw.begin(), nw.end(), std::back_inserter(common));
+    if (common != opposite) return -1;
+    double before = 1e9;
+    for (int x : {v, w})
+      for (int k : star_[x]) before = std::min(before, face_angle(out_, out_.faces[k]));
+    const double limit = std::min(before, floor_);
+    const Point3& p = out_.points[w];
+    double after = 1e9;
+    std::vector<std::array<Point3, 3>> fan;
+    for (int k : star_[v]) {
+      if (k == f || k == g) continue;
+      const auto& t = out_.faces[k];
+      std::array<Point3, 3> q;
+      for (int z = 0; z < 3; ++z) q[z] = t[z] == v ? p : out_.points[t[z]];
+      const double a = min_angle(q[0], q[1], q[2]);
+      if (a < limit || unit_normal(q[0], q[1], q[2]) * normal(t) < kFoldCos) return -1;
+      after = std::min(after, a);
+      fan.push_back(q);
+    }
+    // v was on the input: the faces that now cover its place stay close to where it was.
+    double deviation = 1e300;
+    for (const auto& q : fan) {
+      std::array<double, 3> bary;
+      deviation = std::min(deviation, (closest_point_on_triangle(out_.points[v], q[0], q[1], q[2], bary) - out_.points[v]).Norm());
+    }
+    if (fan.empty() || deviation > kCollapseDeviation * h_[v]) return -1;
+    for (int u : nv)
+      if (u != w && length(w, u) > kLongEdge * h(w, u)) return -1;
+    return after;
+  }
+
+  void collapse(int v, int w) {
+    int f, g;
+    edge_faces(v, w, f, g);
+    for (int k : {f, g}) {
+      for (int u : out_.faces[k]) {
+        auto& s = star_[u];
+        s.erase(std::remove(s.begin(), s.end(), k), s.end());
+      }
+      out_.faces[k] = {-1, -1, -1};
+    }
+    for (int k : star_[v]) {
+      for (int& u : out_.faces[k])
+        if (u == v) u = w;
+      star_[w].push_back(k);
+    }
+    star_[v].clear();
+  }
+
+  void drop_dead_faces() {
+    size_t n = 0;
+    for (size_t f = 0; f < out_.faces.size(); ++f) {
+      if (out_.faces[f][0] < 0) continue;
+      out_.faces[n] = out_.faces[f];
+      out_.face_patch[n++] = out_.face_patch[f];
+    }
+    out_.faces.resize(n);
+    out_.face_patch.resize(n);
+  }
+};
+
+}  // namespace
+
+int relax_edge_lengths(OutputMesh& out, const SurfaceLocator& locator, const SizeField& size,
+                       const std::vector<char>& movable, double floor) {
+  const size_t nv = out.points.size();
+  const FaceRings rings(nv, out.faces);
+  const std::vector<int>&begin = rings.begin, &ring = rings.item;
+  const Surface& s = locator.surface();
+  int moves = 0;
+  std::vector<int> nb;
+  for (size_t v = 0; v < nv; ++v) {
+    if (out.kind[v] != PointKind::Free || !movable[v] || begin[v] == begin[v + 1] || out.host[v] < 0) continue;
+    const double h = size_at(out, locator, size, int(v));
+    nb.clear();
+    for (int k = begin[v]; k < begin[v + 1]; ++k)
+      for (int u : out.faces[ring[k]])
+        if (u != int(v) && std::find(nb.begin(), nb.end(), u) == nb.end()) nb.push_back(u);
+    // Edges out of range at p, and their squared distance from the size.
+    auto misfit = [&](const Point3& p) {
+      int n = 0;
+      double err = 0;
+      for (int u : nb) {
+        const double l = (out.points[u] - p).Norm() / h;
+        n += l < kShortEdge || l > kLongEdge;
+        err += (l - 1) * (l - 1);
+      }
+      return std::make_pair(n, err);
+    };
+    const auto before_fit = misfit(out.points[v]);
+    if (before_fit.first == 0) continue;
+    // Each neighbour pulls or pushes v along their edge to the size (springs of rest length h).
+    const Point3 old = out.points[v];
+    Point3 aim(0, 0, 0);
+    bool coincident = false;
+    for (int u : nb) {
+      const Point3 d = old - out.points[u];
+      const double l = d.Norm();
+      coincident |= !(l > 0);
+      if (l > 0) aim += out.points[u] + d * (h / l);
+    }
+    if (coincident) continue;
+    aim /= double(nb.size());
+    const int patch = out.face_patch[ring[begin[v]]];
+    double before = 1e9;
+    for (int k = begin[v]; k < begin[v + 1]; ++k) before = std::min(before, face_angle(out, out.faces[ring[k]]));
+    const Point3 normal = s.face_normal[out.host[v]];
+    for (double t : {1.0, 0.5, 0.25}) {
+      const Point3 want = old + (aim - old) * t;
+      const Projection pr = locator.locate(want, patch, normal, out.host[v], (want - old).Norm() * 2 + 1e-12);
+      if (pr.face < 0) continue;
+      const auto after_fit = misfit(pr.point);
+      if (after_fit >= before_fit) continue;
+      out.points[v] = pr.point;
+      double after = 1e9;
+      bool folded = false;
+      for (int k = begin[v]; k < begin[v + 1]; ++k) {
+        const auto& f = out.faces[ring[k]];
+        after = std::min(after, face_angle(out, f));
+        folded |= unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]) * s.face_normal[pr.face] < 0.5;
+      }
+      if (folded || after < std::min(before, floor)) {
+        out.points[v] = old;
+        continue;
+      }
+      out.host[v] = pr.face;
+      ++moves;
+      break;
+    }
+  }
+  return moves;
+}
+
+int collapse_short_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed,
+                         const SurfaceLocator& locator, const SizeField& size, const std::vector<char>& movable,
+                         double floor) {
+  return ShortEdgeCollapse(out, fixed, locator, size, movable, floor).run();
+}
+
+}  // namespace mr::remesh
