@@ -31,17 +31,18 @@ double size_at(const OutputMesh& out, const SurfaceLocator& locator, const SizeF
   return size.at(f, bary);
 }
 
-class ShortEdgeCollapse {
+class EdgeLengthMoves {
 public:
-  ShortEdgeCollapse(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const SurfaceLocator& locator,
+  EdgeLengthMoves(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const SurfaceLocator& locator,
                     const SizeField& size, const std::vector<char>& movable, double floor)
-      : out_(out), fixed_(fixed), movable_(movable), floor_(floor), star_(out.points.size()), h_(out.points.size()) {
+      : out_(out), fixed_(fixed), locator_(locator), size_(size), movable_(movable), floor_(floor),
+        star_(out.points.size()), h_(out.points.size()) {
     for (size_t f = 0; f < out.faces.size(); ++f)
       for (int v : out.faces[f]) star_[v].push_back(int(f));
     for (size_t v = 0; v < out.points.size(); ++v) h_[v] = size_at(out, locator, size, int(v));
   }
 
-  int run() {
+  int collapse_short() {
     // Shortest (relative to the size) first; ties by the points, so the order is deterministic.
     std::vector<std::tuple<double, int, int>> edges;
     for (const auto& t : out_.faces)
@@ -72,9 +73,33 @@ public:
     return done;
   }
 
+  /// Splits long edges at their middle, longest first; new points are movable.
+  int split_long(std::vector<char>& movable_out) {
+    std::vector<std::tuple<double, int, int>> edges;
+    for (const auto& t : out_.faces)
+      for (int z = 0; z < 3; ++z) {
+        const int a = t[z], b = t[(z + 1) % 3];
+        if (a > b || !(movable_[a] || movable_[b])) continue;
+        const double r = length(a, b) / h(a, b);
+        if (r > kLongEdge) edges.emplace_back(-r, a, b);
+      }
+    std::sort(edges.begin(), edges.end());
+    int done = 0;
+    for (const auto& [ratio, a, b] : edges) {
+      (void)ratio;
+      if (split(a, b)) {
+        movable_out.push_back(1);
+        ++done;
+      }
+    }
+    return done;
+  }
+
 private:
   OutputMesh& out_;
   const std::unordered_set<std::uint64_t>& fixed_;
+  const SurfaceLocator& locator_;
+  const SizeField& size_;
   const std::vector<char>& movable_;
   double floor_;
   std::vector<std::vector<int>> star_;  // live faces around each point
@@ -172,6 +197,66 @@ private:
     star_[v].clear();
   }
 
+  // Splits inner edge a-b at its middle (on the input) when the four new faces stay above
+  // min(the old two's smallest angle, floor), turn with them and have no edge out of range.
+  bool split(int a, int b) {
+    int f, g;
+    if (!edge_faces(a, b, f, g)) return false;
+    auto runs = [&](int k, int x, int y) {
+      const auto& t = out_.faces[k];
+      for (int z = 0; z < 3; ++z)
+        if (t[z] == x && t[(z + 1) % 3] == y) return true;
+      return false;
+    };
+    if (!runs(f, a, b)) std::swap(f, g);
+    if (!runs(f, a, b) || !runs(g, b, a)) return false;
+    auto third = [&](int k) {
+      for (int u : out_.faces[k])
+        if (u != a && u != b) return u;
+      return -1;
+    };
+    const int c = third(f), d = third(g);
+    const Point3 nf = normal(out_.faces[f]), ng = normal(out_.faces[g]);
+    Point3 n = nf + ng;
+    const int start = out_.host[a] >= 0 ? out_.host[a] : out_.host[b];
+    if (!(n.Norm() > 0) || start < 0) return false;
+    n.Normalize();
+    const Projection pr = locator_.locate((out_.points[a] + out_.points[b]) * 0.5, out_.face_patch[f], n, start, length(a, b));
+    if (pr.face < 0) return false;
+    const Point3 m = pr.point;
+    const double hm = size_.at(pr.face, pr.bary);
+    const double limit = std::min({face_angle(out_, out_.faces[f]), face_angle(out_, out_.faces[g]), floor_});
+    const std::array<Point3, 3> q[4] = {{out_.points[a], m, out_.points[c]}, {m, out_.points[b], out_.points[c]},
+                                        {out_.points[b], m, out_.points[d]}, {m, out_.points[a], out_.points[d]}};
+    for (int k = 0; k < 4; ++k) {
+      if (min_angle(q[k][0], q[k][1], q[k][2]) < limit) return false;
+      if (unit_normal(q[k][0], q[k][1], q[k][2]) * (k < 2 ? nf : ng) < kFoldCos) return false;
+    }
+    for (int u : {a, b, c, d}) {
+      const double r = (out_.points[u] - m).Norm() / (0.5 * (h_[u] + hm));
+      if (r < kShortEdge || r > kLongEdge) return false;
+    }
+    const int v = out_.add_point(m, pr.face, PointKind::Free);
+    h_.push_back(hm);
+    star_.emplace_back();
+    const int f2 = int(out_.faces.size()), g2 = f2 + 1;
+    out_.faces[f] = {a, v, c};
+    out_.faces[g] = {b, v, d};
+    out_.faces.push_back({v, b, c});
+    out_.faces.push_back({v, a, d});
+    out_.face_patch.push_back(out_.face_patch[f]);
+    out_.face_patch.push_back(out_.face_patch[g]);
+    auto drop = [&](int u, int k) { star_[u].erase(std::remove(star_[u].begin(), star_[u].end(), k), star_[u].end()); };
+    drop(b, f);
+    drop(a, g);
+    star_[b].push_back(f2);
+    star_[c].push_back(f2);
+    star_[a].push_back(g2);
+    star_[d].push_back(g2);
+    star_[v] = {f, g, f2, g2};
+    return true;
+  }
+
   void drop_dead_faces() {
     size_t n = 0;
     for (size_t f = 0; f < out_.faces.size(); ++f) {
@@ -259,7 +344,13 @@ int relax_edge_lengths(OutputMesh& out, const SurfaceLocator& locator, const Siz
 int collapse_short_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed,
                          const SurfaceLocator& locator, const SizeField& size, const std::vector<char>& movable,
                          double floor) {
-  return ShortEdgeCollapse(out, fixed, locator, size, movable, floor).run();
+  return EdgeLengthMoves(out, fixed, locator, size, movable, floor).collapse_short();
+}
+
+int split_long_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const SurfaceLocator& locator,
+                     const SizeField& size, std::vector<char>& movable, double floor) {
+  const std::vector<char> before(movable);
+  return EdgeLengthMoves(out, fixed, locator, size, before, floor).split_long(movable);
 }
 
 }  // namespace mr::remesh

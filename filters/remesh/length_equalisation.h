@@ -3,7 +3,8 @@
 // (armadillo at 1% with 30-degree ridges: 9.5% of the edges). Two moves of free points bring
 // them back, each only when its faces stay above min(their old smallest angle, `floor`):
 // - a free point slides, on the input surface, towards where its edges have the local size;
-// - a free point at the short end of an edge collapses onto the other end.
+// - a free point at the short end of an edge collapses onto the other end;
+// - a long edge is split at its middle.
 #pragma once
 
 #include "remesh/output_mesh.h"
@@ -33,5 +34,12 @@ int relax_edge_lengths(OutputMesh& out, const SurfaceLocator& locator, const Siz
 int collapse_short_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed,
                          const SurfaceLocator& locator, const SizeField& size, const std::vector<char>& movable,
                          double floor);
+
+/// Splits edges longer than kLongEdge x the local size, one end in `movable`, at their middle
+/// projected onto the input, when the four new faces stay above min(the two old faces' smallest
+/// angle, `floor`), do not fold and have every edge in range. New points are free and movable
+/// (appended to `movable`).
+int split_long_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const SurfaceLocator& locator,
+                     const SizeField& size, std::vector<char>& movable, double floor);
 
 }  // namespace mr::remesh

@@ -29,7 +29,7 @@ constexpr double kSlideBelow = 20.0 * 3.14159265358979323846 / 180.0;
 
 // Moves for edge lengths may lower a face's smallest angle down to this (radians), never below
 // its old one if that was lower. (Armadillo at 1%, 30-degree ridges: edges in range 90.5 ->
-// 93.0%, mean minimum angle unchanged; from 35 degrees 92.4%.)
+// 93.9%, mean minimum angle 49.92 -> 50.13; from 35 degrees instead, 1.5 points less.)
 constexpr double kLengthFloor = 30.0 * 3.14159265358979323846 / 180.0;
 
 // Sweeps of the post-pass that also search swap sequences against valence defects.
@@ -171,7 +171,7 @@ std::vector<char> region_around(const OutputMesh& out, const std::vector<int>& m
 ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
                                const SurfaceLocator& locator, const SizeField& size, int iterations, std::vector<LinePath> line_paths,
                                const std::vector<int>& moved) {
-  const std::vector<char> region = region_around(out, moved);
+  std::vector<char> region = region_around(out, moved);
   std::vector<char> movable(region);
   for (int v : moved) movable[v] = 0;
   std::unordered_set<std::uint64_t> fixed;
@@ -191,11 +191,14 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
     // Edge lengths last in each sweep: the swaps and smoothing above chose the shapes, these
     // moves only trade angles above kLengthFloor for lengths in range.
     const int collapsed = collapse_short_edges(out, fixed, locator, size, movable, kLengthFloor);
+    const int split = split_long_edges(out, fixed, locator, size, movable, kLengthFloor);
+    region.resize(out.points.size(), 1);  // split points are new and movable
     moves += relax_edge_lengths(out, locator, size, movable, kLengthFloor);
     r.collapsed += collapsed;
+    r.split += split;
     r.swaps += swaps;
     r.moves += moves;
-    if (swaps == 0 && moves == 0 && collapsed == 0) break;
+    if (swaps == 0 && moves == 0 && collapsed == 0 && split == 0) break;
   }
   // Line points slide last, where swaps and smoothing left bad faces around them; the free
   // points around a moved one are smoothed again.

@@ -22,6 +22,7 @@ struct ImprovementResult {
   int swaps = 0;
   int moves = 0;
   int collapsed = 0;  ///< free points removed by collapsing a short edge
+  int split = 0;      ///< long edges split at their middle
 };
 
 /// `feature_edges` are output edges that must stay (either orientation); the points of

@@ -323,6 +323,7 @@ Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
   result.swaps = ir.swaps;
   result.smoothed = ir.moves;
   result.collapsed = ir.collapsed;
+  result.split = ir.split;
 
   progress(params, 86, "Snapping to input vertices the output cuts off");
   const std::vector<int> snapped = snap_to_far_vertices(out, locator, size);
@@ -335,6 +336,7 @@ Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
     result.swaps += again.swaps;
     result.smoothed += again.moves;
     result.collapsed += again.collapsed;
+    result.split += again.split;
   }
 
   // Last, pairs that bridge a crease stage 1 dropped turn to follow it (rocker-arm at 1%: 7 swaps,

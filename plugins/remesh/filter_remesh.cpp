@@ -172,6 +172,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"swaps", QVariant(r.swaps)},
       {"smoothed", QVariant(r.smoothed)},
       {"collapsed", QVariant(r.collapsed)},
+      {"split", QVariant(r.split)},
       {"snapped", QVariant(r.snapped)},
       {"surface_swaps", QVariant(r.surface_swaps)},
       {"target_length", QVariant(p.target_length)},

@@ -133,3 +133,36 @@ TEST(RemeshLengthEqualisation, LinePointsAndFeatureEdgesStay) {
   relax_edge_lengths(out, sq.locator, sq.size, movable, 30 * kDeg);
   for (int i = 0; i <= kN; ++i) EXPECT_EQ(out.points[id(i, 0)], before.points[id(i, 0)]);
 }
+
+TEST(RemeshLengthEqualisation, LongEdgeIsSplitAtItsMiddleOnTheSurface) {
+  test::UnitSquare sq(kH);
+  // Two faces on the long edge a-b (2.7 h) whose apexes c and d lie 0.9 h from its middle.
+  OutputMesh out;
+  for (const Point3& p : {Point3(0.3, 0.5, 0), Point3(0.6, 0.5, 0), Point3(0.45, 0.6, 0), Point3(0.45, 0.4, 0)})
+    out.add_point(p, sq.locator.locate(p, -1, Point3(0, 0, 1), -1, 0.2).face, PointKind::Line);
+  out.faces = {{0, 1, 2}, {1, 0, 3}};
+  out.face_patch = {0, 0};
+  const double before = worst_angle(out);
+
+  std::vector<char> movable(out.points.size(), 1);
+  EXPECT_EQ(split_long_edges(out, {}, sq.locator, sq.size, movable, 30 * kDeg), 1);
+  ASSERT_EQ(out.points.size(), 5u);
+  EXPECT_EQ(movable.size(), 5u);
+  EXPECT_EQ(out.kind[4], PointKind::Free);
+  EXPECT_EQ(out.faces.size(), 4u);
+  EXPECT_NEAR((out.points[4] - Point3(0.45, 0.5, 0)).Norm(), 0.0, 1e-12);
+  for (const auto& t : out.faces) {
+    EXPECT_EQ(std::count(t.begin(), t.end(), 4), 1);
+    const Point3 n = (out.points[t[1]] - out.points[t[0]]) ^ (out.points[t[2]] - out.points[t[0]]);
+    EXPECT_GT(n[2], 0);
+  }
+  EXPECT_GE(worst_angle(out), std::min(before, 30 * kDeg));
+  // A fixed (feature) edge stays whole.
+  OutputMesh kept;
+  for (int v = 0; v < 4; ++v) kept.add_point(out.points[v], out.host[v], PointKind::Line);
+  kept.faces = {{0, 1, 2}, {1, 0, 3}};
+  kept.face_patch = {0, 0};
+  std::vector<char> all(4, 1);
+  EXPECT_EQ(split_long_edges(kept, {OutputMesh::edge_key(0, 1)}, sq.locator, sq.size, all, 30 * kDeg), 0);
+  EXPECT_EQ(kept.faces.size(), 2u);
+}
