@@ -10,12 +10,6 @@
 namespace mr::surface_union {
 
 namespace {
-
-int sign_of(const mpq_class& v) { return sgn(v); }
-
-}  // namespace
-
-namespace {
 // Lazy rationals of points shared by threads: a few locks, picked by address.
 std::mutex& lock_of(const void* p) {
   static std::mutex locks[64];
@@ -83,7 +77,7 @@ bool same_point(const QPoint& a, const QPoint& b) {
   // Truncation is monotone: different doubles, different rationals.
   if (a.d != b.d) return false;
   if (a.exact_double && b.exact_double) return true;
-  return a.q(0) == b.q(0) && a.q(1) == b.q(1) && a.q(2) == b.q(2);
+  return compare(a, b, 0) == 0 && compare(a, b, 1) == 0 && compare(a, b, 2) == 0;
 }
 
 mpq_class orient3d_exact(const double* a, const double* b, const double* c, const double* d) {
@@ -107,6 +101,17 @@ int orient3d_integer_sign(const double* a, const double* b, const double* c, con
 int orient2d_integer_sign(const double* a, const double* b, const double* c, int i, int j);
 /// The same for perpendicular_dot_sign.
 int perpendicular_dot_integer_sign(const double* u, const double* w, const double* x, const double* y);
+
+/// A point in homogeneous integers on two axes: (x / w, y / w).
+struct Homogeneous2 {
+  const mpz_class &x, &y, &w;
+};
+/// out = det[[x_u, y_u, w_u], [x_v, y_v, w_v], [x_p, y_p, w_p]] = w_u w_v w_p
+/// orient2d(u, v, p); t is scratch.
+void homogeneous_orient2d(mpz_class& out, mpz_class& t, Homogeneous2 u, Homogeneous2 v, Homogeneous2 p);
+/// Sign of orient2d on rational points from their integers (QPoint::homogeneous): the
+/// rationals' products and sums would each take a gcd.
+int orient2d_homogeneous_sign(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
 
 }  // namespace
 
@@ -249,7 +254,7 @@ int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
                             3.3e-16 * (std::fabs(bx * cy) + std::fabs(by * cx)));
   if (det > bound) return 1;
   if (det < -bound) return -1;
-  return sign_of(orient2d_exact(a, b, c, i, j));
+  return orient2d_homogeneous_sign(a, b, c, i, j);
 }
 
 namespace {
@@ -344,7 +349,61 @@ int perpendicular_dot_integer_sign(const double* u, const double* w, const doubl
   return sgn(mpz_class(ab * dd - ad * bd));
 }
 
+void homogeneous_orient2d(mpz_class& out, mpz_class& t, Homogeneous2 u, Homogeneous2 v, Homogeneous2 p) {
+  // Along the w column; fused multiply-adds, no temporaries.
+  mpz_mul(t.get_mpz_t(), v.x.get_mpz_t(), p.y.get_mpz_t());
+  mpz_submul(t.get_mpz_t(), v.y.get_mpz_t(), p.x.get_mpz_t());
+  mpz_mul(out.get_mpz_t(), u.w.get_mpz_t(), t.get_mpz_t());
+  mpz_mul(t.get_mpz_t(), u.x.get_mpz_t(), p.y.get_mpz_t());
+  mpz_submul(t.get_mpz_t(), u.y.get_mpz_t(), p.x.get_mpz_t());
+  mpz_submul(out.get_mpz_t(), v.w.get_mpz_t(), t.get_mpz_t());
+  mpz_mul(t.get_mpz_t(), u.x.get_mpz_t(), v.y.get_mpz_t());
+  mpz_submul(t.get_mpz_t(), u.y.get_mpz_t(), v.x.get_mpz_t());
+  mpz_addmul(out.get_mpz_t(), p.w.get_mpz_t(), t.get_mpz_t());
+}
+
+int orient2d_homogeneous_sign(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j) {
+  thread_local mpz_class n[3][2], w[3], det, t;  // reused across calls (saves allocations)
+  const int axes[2] = {i, j};
+  a.homogeneous(axes, 2, n[0], w[0]);
+  b.homogeneous(axes, 2, n[1], w[1]);
+  c.homogeneous(axes, 2, n[2], w[2]);
+  homogeneous_orient2d(det, t, {n[0][0], n[0][1], w[0]}, {n[1][0], n[1][1], w[1]}, {n[2][0], n[2][1], w[2]});
+  return sgn(det);  // every w is positive
+}
+
 }  // namespace
+
+void QPoint::homogeneous(const int* axes, int count, mpz_class* n, mpz_class& w) const {
+  const auto* q = q_.load(std::memory_order_acquire);
+  if (exact_double || !q) {  // the doubles are the rationals: integers times 2^e
+    const double* vals[3];
+    for (int m = 0; m < count; ++m) vals[m] = &d[axes[m]];
+    const int e = scale_to_integers(vals, count, n);
+    w = 1;
+    if (e < 0) mpz_mul_2exp(w.get_mpz_t(), w.get_mpz_t(), -e);
+    for (int m = 0; m < count && e > 0; ++m) mpz_mul_2exp(n[m].get_mpz_t(), n[m].get_mpz_t(), e);
+    return;
+  }
+  // A canonical form never changes again; an unreduced one may be put in canonical
+  // form in place by another thread (q_slow): read it under the same lock.
+  std::unique_lock<std::mutex> lock(lock_of(this), std::defer_lock);
+  if (!canonical_.load(std::memory_order_acquire)) lock.lock();
+  // The product of the denominators (all positive), each distinct one taken once: an
+  // unreduced point has one for all its coordinates.
+  mpz_set(n[0].get_mpz_t(), (*q)[axes[0]].get_num_mpz_t());
+  mpz_set(w.get_mpz_t(), (*q)[axes[0]].get_den_mpz_t());
+  for (int m = 1; m < count; ++m) {
+    mpz_srcptr num = (*q)[axes[m]].get_num_mpz_t(), den = (*q)[axes[m]].get_den_mpz_t();
+    if (mpz_cmp(den, w.get_mpz_t()) == 0) {
+      mpz_set(n[m].get_mpz_t(), num);
+      continue;
+    }
+    for (int l = 0; l < m; ++l) mpz_mul(n[l].get_mpz_t(), n[l].get_mpz_t(), den);
+    mpz_mul(n[m].get_mpz_t(), num, w.get_mpz_t());
+    mpz_mul(w.get_mpz_t(), w.get_mpz_t(), den);
+  }
+}
 
 QPoint crossing_from_integers(mpz_class& oa, mpz_class& ob, const mpz_class* A, const mpz_class* B, int e);
 
@@ -424,6 +483,37 @@ QPoint segment_line_crossing(const double* a, const double* b, const double* c0,
   return crossing_from_integers(oa, ob, A, B, e);
 }
 
+QPoint segment_line_crossing(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d, int i, int j) {
+  thread_local mpz_class A[3], B[3], wa, wb, C[2], D[2], wc, wd, ha, hb, t, den;
+  const int xyz[3] = {0, 1, 2}, axes[2] = {i, j};
+  a.homogeneous(xyz, 3, A, wa);
+  b.homogeneous(xyz, 3, B, wb);
+  c.homogeneous(axes, 2, C, wc);
+  d.homogeneous(axes, 2, D, wd);
+  // ha = wc wd wa orient2d(c, d, a), hb the same for b. The crossing a + t (b - a),
+  // t = oa / (oa - ob) with oa, ob the orient2d values, is then (ha B - hb A) / (ha wb - hb wa).
+  homogeneous_orient2d(ha, t, {C[0], C[1], wc}, {D[0], D[1], wd}, {A[i], A[j], wa});
+  homogeneous_orient2d(hb, t, {C[0], C[1], wc}, {D[0], D[1], wd}, {B[i], B[j], wb});
+  mpz_mul(den.get_mpz_t(), ha.get_mpz_t(), wb.get_mpz_t());
+  mpz_submul(den.get_mpz_t(), hb.get_mpz_t(), wa.get_mpz_t());
+  if (sgn(den) < 0) {  // a positive denominator, as crossing_from_integers
+    mpz_neg(den.get_mpz_t(), den.get_mpz_t());
+    mpz_neg(ha.get_mpz_t(), ha.get_mpz_t());
+    mpz_neg(hb.get_mpz_t(), hb.get_mpz_t());
+  }
+  QPoint r;
+  auto& q = r.own_q();
+  for (int k = 0; k < 3; ++k) {
+    mpq_class& x = q[k];
+    mpz_mul(x.get_num_mpz_t(), ha.get_mpz_t(), B[k].get_mpz_t());
+    mpz_submul(x.get_num_mpz_t(), hb.get_mpz_t(), A[k].get_mpz_t());
+    mpz_set(x.get_den_mpz_t(), den.get_mpz_t());
+    r.d[k] = x.get_d();
+  }
+  r.canonical_ = false;
+  return r;
+}
+
 QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t) {
   return make_point_canonical(a.q(0) + t * (b.q(0) - a.q(0)), a.q(1) + t * (b.q(1) - a.q(1)), a.q(2) + t * (b.q(2) - a.q(2)));
 }
@@ -453,7 +543,16 @@ int compare(const QPoint& a, const QPoint& b, int axis) {
   if (a.d[axis] < b.d[axis]) return -1;
   if (a.d[axis] > b.d[axis]) return 1;
   if (a.exact_double && b.exact_double) return 0;
-  return cmp(a.q(axis), b.q(axis));
+  // n_a / w_a against n_b / w_b with positive w: cross-multiplied, no canonical forms.
+  thread_local mpz_class na, wa, nb, wb;
+  a.homogeneous(&axis, 1, &na, wa);
+  b.homogeneous(&axis, 1, &nb, wb);
+  if (mpz_cmp(wa.get_mpz_t(), wb.get_mpz_t()) != 0) {
+    mpz_mul(na.get_mpz_t(), na.get_mpz_t(), wb.get_mpz_t());
+    mpz_mul(nb.get_mpz_t(), nb.get_mpz_t(), wa.get_mpz_t());
+  }
+  const int c = mpz_cmp(na.get_mpz_t(), nb.get_mpz_t());
+  return (c > 0) - (c < 0);
 }
 
 }  // namespace mr::surface_union

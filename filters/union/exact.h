@@ -42,15 +42,17 @@ public:
 
   /// Exact coordinate k (canonical).
   const mpq_class& q(int k) const;
+  /// Integers n[0..count) and w > 0 with coordinate axes[m] = n[m] / w, exactly, taken
+  /// from the stored form as it is: no gcd, which is what canonical forms cost.
+  void homogeneous(const int* axes, int count, mpz_class* n, mpz_class& w) const;
 
 private:
   friend QPoint make_point(const std::array<double, 3>& p);
   friend QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z);
-/// The same for coordinates already in canonical form (results of rational arithmetic).
-QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint edge_plane_crossing(const double*, const double*, const double*, const double*, const double*);
   friend QPoint crossing_from_integers(mpz_class&, mpz_class&, const mpz_class*, const mpz_class*, int);
+  friend QPoint segment_line_crossing(const QPoint&, const QPoint&, const QPoint&, const QPoint&, int, int);
   // Built or put in canonical form on first use, possibly by several threads reading
   // the same point at once: the first one does it under a lock and publishes it.
   const mpq_class& q_slow(int k) const;
@@ -59,6 +61,7 @@ QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
     return *q_.load(std::memory_order_relaxed);
   }
   mutable std::atomic<std::array<mpq_class, 3>*> q_{nullptr};
+  // false: the rationals are unreduced, with one positive denominator (crossings).
   mutable std::atomic<bool> canonical_{true};
 };
 
@@ -129,7 +132,8 @@ int orient2d(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
 /// decides it, else 2 (no exact arithmetic).
 int orient2d_filter(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
 
-/// det[b-a, c-a] on axes (i, j), exactly.
+/// det[b-a, c-a] on axes (i, j), exactly (rational arithmetic: orient2d above gets the
+/// sign from integers).
 mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
 
 /// The point where segment (a, b) crosses the plane of (f0, f1, f2), exactly; a and b
@@ -140,6 +144,11 @@ QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, c
 /// The point where segment (a, b) crosses the line (c0, c1) in the projection on axes
 /// (i, j), exactly; a and b must not both lie on the line. Integers as above.
 QPoint segment_line_crossing(const double* a, const double* b, const double* c0, const double* c1, int i, int j);
+
+/// The same for rational points: where segment (a, b) crosses line (c, d) in the
+/// projection on axes (i, j); a and b must lie strictly on opposite sides of the line.
+/// Computed from the points' integers (QPoint::homogeneous), left unreduced.
+QPoint segment_line_crossing(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d, int i, int j);
 
 /// a + t (b - a), exactly.
 QPoint lerp(const QPoint& a, const QPoint& b, const mpq_class& t);

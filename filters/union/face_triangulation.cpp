@@ -168,12 +168,10 @@ bool FaceTriangulator::add_crossings(const std::vector<std::array<int, 2>>& segs
     for (size_t y = x + 1; y < n; ++y) {
       const int a = segs[x][0], b = segs[x][1], c = segs[y][0], d = segs[y][1];
       if (!crosses(a, b, c, d)) continue;
-      const mpq_class oa = orient2d_exact(P(c), P(d), P(a), pr_.i, pr_.j);
-      const mpq_class ob = orient2d_exact(P(c), P(d), P(b), pr_.i, pr_.j);
       // Every crossing is recorded (with the lines it lies on, so splitting segments at
       // it needs no arithmetic later); one equal to a point the face already has adds
       // no local point.
-      QPoint q = lerp(P(a), P(b), oa / (oa - ob));
+      QPoint q = segment_line_crossing(P(a), P(b), P(c), P(d), pr_.i, pr_.j);
       int existing = -1;
       for (int l = 0; l < int(ids_.size()) && existing < 0; ++l)
         if (same_point(P(l), q)) existing = l;

@@ -9,7 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <thread>
+#include <vector>
 
 using namespace mr::surface_union;
 
@@ -50,6 +53,132 @@ TEST(UnionExact, Orient2dOnDoublesIsExactOnNearlyCollinearPoints) {
   EXPECT_EQ(orient2d(p, q, r, 0, 1), 0);
   const double up[3] = {1.0, std::nextafter(2.0, 3.0), 0};
   EXPECT_EQ(orient2d(p, q, up, 0, 1), 1);
+}
+
+namespace {
+
+/// Crossings of a few segments with line (c0, c1) in the xy projection: points with
+/// unreduced rational coordinates lying exactly on that line.
+std::vector<QPoint> crossings_on_line(const double* c0, const double* c1) {
+  std::vector<QPoint> out;
+  for (int k = 0; k < 4; ++k) {
+    const double s0[3] = {0.2 + 0.13 * k, -0.1, 0.3 * k}, s1[3] = {0.3 + 0.07 * k, 1.1, 1.0 / 3 - 0.1 * k};
+    out.push_back(segment_line_crossing(s0, s1, c0, c1, 0, 1));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(UnionExact, Orient2dOnUnreducedRationalsAgreesWithRationalArithmetic) {
+  // Points exactly on line L = (c0, c1), and on L' whose end is one ulp off c1: most
+  // triples are exactly collinear or off by ~1e-17, where the filter cannot decide.
+  const double c0[3] = {0.1, 0.3, 0}, c1[3] = {0.7, 0.5, 0}, c1_off[3] = {0.7, std::nextafter(0.5, 1.0), 0};
+  std::vector<QPoint> pts = crossings_on_line(c0, c1);
+  for (QPoint& p : crossings_on_line(c0, c1_off)) pts.push_back(std::move(p));
+  pts.push_back(make_point({c0[0], c0[1], c0[2]}));
+  pts.push_back(make_point({c1[0], c1[1], c1[2]}));
+  const int n = int(pts.size());
+  const int axes[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  // First on the unreduced forms (orient2d_exact below puts them in canonical form),
+  // then again on the canonical forms (one denominator per coordinate).
+  std::vector<int> signs;
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<int> got;
+    for (const auto& ax : axes)
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b)
+          for (int c = 0; c < n; ++c)
+            if (a != b && b != c && a != c) got.push_back(orient2d(pts[a], pts[b], pts[c], ax[0], ax[1]));
+    if (pass == 0) {
+      int undecided_zero = 0, undecided_nonzero = 0;
+      size_t t = 0;
+      for (const auto& ax : axes)
+        for (int a = 0; a < n; ++a)
+          for (int b = 0; b < n; ++b)
+            for (int c = 0; c < n; ++c) {
+              if (a == b || b == c || a == c) continue;
+              const int expected = sgn(orient2d_exact(pts[a], pts[b], pts[c], ax[0], ax[1]));
+              if (orient2d_filter(pts[a], pts[b], pts[c], ax[0], ax[1]) == 2)
+                ++(expected == 0 ? undecided_zero : undecided_nonzero);
+              signs.push_back(expected);
+              EXPECT_EQ(got[t++], expected) << a << " " << b << " " << c << " on axes " << ax[0] << ax[1];
+            }
+      // Both kinds of exact decisions were made: collinear, and a sign the filter missed.
+      EXPECT_GT(undecided_zero, 100);
+      EXPECT_GT(undecided_nonzero, 100);
+    } else {
+      EXPECT_EQ(got, signs);
+    }
+  }
+}
+
+TEST(UnionExact, RationalCrossingEqualsTheInterpolatedPoint) {
+  // Segment (a, b) between two unreduced points, crossing line (c, d) of unreduced
+  // points: the integer construction gives the rational a + t (b - a), t = oa / (oa - ob).
+  const double l0[3] = {0, 0, 0}, l1[3] = {1, 1, 0}, m0[3] = {0, 0.8, 0}, m1[3] = {1, 0.2, 0};
+  std::vector<QPoint> on_l = crossings_on_line(l0, l1), on_m = crossings_on_line(m0, m1);
+  const QPoint x = segment_line_crossing(on_l[0], on_l[3], on_m[1], on_m[2], 0, 1);
+  const QPoint& a = on_l[0];
+  const QPoint& b = on_l[3];
+  const mpq_class oa = orient2d_exact(on_m[1], on_m[2], a, 0, 1), ob = orient2d_exact(on_m[1], on_m[2], b, 0, 1);
+  ASSERT_LT(sgn(oa) * sgn(ob), 0);
+  const QPoint y = lerp(a, b, oa / (oa - ob));
+  EXPECT_EQ(x.d, y.d);
+  EXPECT_TRUE(same_point(x, y));  // before x is put in canonical form
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(compare(x, y, k), 0);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(x.q(k), y.q(k));
+  EXPECT_EQ(orient2d(on_m[1], on_m[2], x, 0, 1), 0);
+  EXPECT_EQ(orient2d(a, b, x, 0, 1), 0);
+}
+
+TEST(UnionExact, UnreducedAndCanonicalFormsCompareAsEqual) {
+  // (0,0)-(2,2) crosses x + y = 1 at (1/2, 1/2), built as 2/4; an ulp above 1/2 is
+  // another point with the same truncated x only if the doubles say so: compare decides.
+  const double s0[3] = {0, 0, 5}, s1[3] = {2, 2, 5}, l0[3] = {1, 0, 5}, l1[3] = {0, 1, 5};
+  const QPoint c = segment_line_crossing(s0, s1, l0, l1, 0, 1);
+  const QPoint half = make_point(mpq_class(1, 2), mpq_class(1, 2), mpq_class(5));
+  const QPoint above = make_point(mpq_class(1, 2) + mpq_class(1, 1000000) * mpq_class(1, 1000000) * mpq_class(1, 1000000),
+                                  mpq_class(1, 2), mpq_class(5));
+  EXPECT_TRUE(same_point(c, half));
+  EXPECT_TRUE(same_point(c, make_point({0.5, 0.5, 5})));
+  EXPECT_EQ(compare(c, above, 0), -1);
+  EXPECT_EQ(compare(above, c, 0), 1);
+  EXPECT_FALSE(same_point(c, above));
+}
+
+TEST(UnionExact, ExactOrient2dReadsPointsWhileAnotherThreadCanonicalisesThem) {
+  // Threads share unreduced points, as in the re-triangulation: one reads their stored
+  // forms for the integer predicates while the other puts them in canonical form in
+  // place (q()). ThreadSanitizer (scripts/test) checks the locks and atomics; it does
+  // not see the reads and writes inside GMP, so the results are checked too: a form read
+  // half reduced would make these collinear points look not collinear (a race would
+  // show only by chance, the window is short).
+  const double c0[3] = {0.1, 0.3, 0}, c1[3] = {0.7, 0.5, 0};
+  constexpr int kRounds = 2000;
+  std::vector<std::vector<QPoint>> sets;
+  for (int r = 0; r < kRounds; ++r) sets.push_back(crossings_on_line(c0, c1));
+  std::atomic<int> arrived{0}, wrong{0};
+  auto wait_for_other = [&](int round) {  // both threads work on a round's points at once
+    arrived.fetch_add(1);
+    while (arrived.load() < 2 * (round + 1)) std::this_thread::yield();
+  };
+  std::thread reader([&] {
+    for (int r = 0; r < kRounds; ++r) {
+      wait_for_other(r);
+      const auto& p = sets[r];
+      for (int a = 0; a < 4; ++a) {
+        if (orient2d(p[a], p[(a + 1) % 4], p[(a + 2) % 4], 0, 1) != 0) ++wrong;
+        if (!same_point(p[a], p[a]) || compare(p[a], p[(a + 1) % 4], 0) == 0) ++wrong;
+      }
+    }
+  });
+  for (int r = 0; r < kRounds; ++r) {
+    wait_for_other(r);
+    for (const QPoint& p : sets[r]) (void)p.q(0);
+  }
+  reader.join();
+  EXPECT_EQ(wrong.load(), 0);
 }
 
 TEST(UnionExact, CrossingsAreExactAndEqualToTheReducedRational) {
