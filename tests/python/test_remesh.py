@@ -59,10 +59,10 @@ def input_ridges(name: str, min_line_length: float):
 # Acceptance items a mesh does not meet yet at 1% / 30 degrees / min_line_length = target, with the
 # measured numbers (benchmarks/remesh.md); each is asserted at the weaker bound given instead.
 SHORTFALLS = {
-    # 90.5% of the edges in range (MeshLab 87.5%): 1129 corners, about half within 0.7 x target of
+    # 93.9% of the edges in range (MeshLab 87.5%): 1129 corners, about half within 0.7 x target of
     # another (short creases between the junctions of the scan's 30-degree ridge network); the
-    # edges among and around them are short
-    "organic/armadillo.off": {"edges_in_range": 0.9},
+    # edges among and around them are short, and no move may shift them (docs/remesh.md)
+    "organic/armadillo.off": {"edges_in_range": 0.93},
 }
 
 
