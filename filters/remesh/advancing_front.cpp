@@ -1,5 +1,6 @@
 #include "remesh/advancing_front.h"
 
+#include "remesh/point_grid.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
@@ -31,35 +32,6 @@ struct Side {
   int failures = 0;
   bool alive = true;
   Point3 back_normal{0, 0, 0};  ///< normal of the generated face behind the side (zero for initial sides)
-};
-
-// Front points in a hash grid; entries are never removed, callers skip points off the front.
-class PointGrid {
-public:
-  explicit PointGrid(double cell) : cell_(cell) {}
-  void add(int id, const Point3& p) { cells_[key(p)].push_back(id); }
-  template <class F> void for_each_near(const Point3& p, double r, F&& f) const {
-    const long n = long(std::ceil(r / cell_));
-    const auto c = coords(p);
-    for (long i = c[0] - n; i <= c[0] + n; ++i)
-      for (long j = c[1] - n; j <= c[1] + n; ++j)
-        for (long k = c[2] - n; k <= c[2] + n; ++k) {
-          auto it = cells_.find(pack(i, j, k));
-          if (it == cells_.end()) continue;
-          for (int id : it->second) f(id);
-        }
-  }
-
-private:
-  std::array<long, 3> coords(const Point3& p) const {
-    return {long(std::floor(p[0] / cell_)), long(std::floor(p[1] / cell_)), long(std::floor(p[2] / cell_))};
-  }
-  static std::int64_t pack(long i, long j, long k) {
-    return (std::int64_t(i & 0x1FFFFF) << 42) | (std::int64_t(j & 0x1FFFFF) << 21) | std::int64_t(k & 0x1FFFFF);
-  }
-  std::int64_t key(const Point3& p) const { auto c = coords(p); return pack(c[0], c[1], c[2]); }
-  double cell_;
-  std::unordered_map<std::int64_t, std::vector<int>> cells_;
 };
 
 class PatchMesher {

@@ -3,6 +3,7 @@
 #include "remesh/feature_front.h"
 #include "remesh/line_sliding.h"
 #include "remesh/patch_retry.h"
+#include "remesh/point_grid.h"
 #include "remesh/size_field.h"
 #include "remesh/strip_staggering.h"
 #include "remesh/surface_recovery.h"
@@ -368,5 +369,33 @@ TEST(RemeshPieces, RecoveryLeavesPointsOnDegenerateHostFacesAsTheyAre) {
       for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isfinite(out.points[on_good][k]));
       EXPECT_NEAR(out.points[on_good][2], 0.0, 1e-12);  // a flat face: recovery keeps the plane
     }
+  }
+}
+
+TEST(RemeshPieces, PointGridFindsTheSameCellsForSmallAndHugeRadii) {
+  // Points on a 10 x 10 x 10 lattice of spacing 1 in cells of 1: small radii walk the box of
+  // cells, radii whose box outnumbers the filled cells visit the filled cells; both give every
+  // point within the box of cells around the query, and no other.
+  PointGrid grid(1.0);
+  std::vector<Point3> points;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 10; ++k) {
+        points.emplace_back(i + 0.5, j + 0.5, k + 0.5);
+        grid.add(int(points.size()) - 1, points.back());
+      }
+  const Point3 q(3.2, 4.7, 5.1);
+  for (double r : {0.5, 1.5, 2.5, 6.0, 40.0, 1e6}) {
+    std::vector<int> found;
+    grid.for_each_near(q, r, [&](int id) { found.push_back(id); });
+    std::sort(found.begin(), found.end());
+    const long n = long(std::ceil(r));
+    std::vector<int> expected;
+    for (size_t v = 0; v < points.size(); ++v) {
+      bool in = true;
+      for (int c = 0; c < 3; ++c) in = in && std::abs(long(std::floor(points[v][c])) - long(std::floor(q[c]))) <= n;
+      if (in) expected.push_back(int(v));
+    }
+    EXPECT_EQ(found, expected) << "radius " << r;
   }
 }
