@@ -220,8 +220,9 @@ def main(argv=None):
     ap.add_argument("--meshes", nargs="*", default=MESHES, help="paths relative to ../shared/data")
     ap.add_argument("--percent", type=float, default=1.0, help="target length in %% of the diagonal (default 1)")
     ap.add_argument("--ridge-angle", type=float, default=30.0)
-    ap.add_argument("--min-line", type=float, default=1.0,
-                    help="our min_line_length in units of the target length (default 1; 0 keeps every ridge)")
+    ap.add_argument("--min-line", type=float, default=2.0,
+                    help="our min_line_length in units of the target length (default 2, the filter's default; "
+                         "0 keeps every ridge)")
     ap.add_argument("--out", default="out/compare_isotropic")
     ap.add_argument("--peers", default="netgen,mmg",
                     help="optional peers to run when installed (comma list of netgen, mmg; empty for none)")

@@ -54,12 +54,12 @@ RichParameterList Remeshing::initParameterList(const QAction*, const MeshDocumen
   list.addParam(RichFloat("corner_angle", Scalarm(d.corner_angle_deg), "Corner angle (deg)",
                           "A point on two ridges is a corner, kept as an output vertex, when the line turns by "
                           "more than this angle, in [0, 180]."));
-  list.addParam(RichPercentage("min_line_length", Scalarm(diag * 0.01), 0, Scalarm(diag), "Minimum feature line length",
+  list.addParam(RichPercentage("min_line_length", Scalarm(diag * 0.02), 0, Scalarm(diag), "Minimum feature line length",
                                "Feature-noise suppression: ridge lines shorter than this with an open end, "
                                "closed ridge loops shorter than this and the borders of small sliver patches "
                                "are not kept as features (elements of the "
-                               "target size cannot represent them). Set it to the target length (the default is "
-                               "the default target, 1% of the diagonal); 0 keeps every ridge and corner."));
+                               "target size cannot represent them). Set it to twice the target length (the default is "
+                               "twice the default target, 2% of the diagonal); 0 keeps every ridge and corner."));
   list.addParam(RichPercentage("max_surface_error", 0, 0, Scalarm(diag), "Max surface (chord) error",
                                "Curvature adaptation: where the surface bends, elements shrink so the chord error "
                                "stays below this distance (h <= sqrt(8 e R)). 0 keeps the size uniform."));

@@ -13,7 +13,7 @@ def remesh(ms: pymeshlab.MeshSet, target_length=None, target_percent: float = 1.
     """Remeshes the current mesh of ``ms`` into a new layer (which becomes current).
 
     ``target_length`` is absolute; without it ``target_percent`` of the bounding-box diagonal
-    is used (1% by default). ``min_line_length`` (absolute; default: the target length, 0 keeps
+    is used (1% by default). ``min_line_length`` (absolute; default: twice the target length, 0 keeps
     every ridge and corner) drops short ridge lines with an open end and short closed ridge
     loops in both steps, so they agree on the features. ``max_surface_error`` (absolute,
     0 = off) turns on curvature adaptation. Returns the filter's dictionary plus ``features``, the feature filter's
@@ -25,7 +25,7 @@ def remesh(ms: pymeshlab.MeshSet, target_length=None, target_percent: float = 1.
     source = ms.current_mesh_id()
     absolute = (target_length if target_length is not None
                 else target_percent / 100.0 * ms.current_mesh().bounding_box().diagonal())
-    min_line = absolute if min_line_length is None else min_line_length
+    min_line = 2 * absolute if min_line_length is None else min_line_length
     features = pipelines.detect_features(ms, ridge_angle=ridge_angle, corner_angle=corner_angle, lines_layer=False,
                                          min_line_length=min_line)
     ms.set_current_mesh(source)

@@ -17,7 +17,7 @@ def add_arguments(p):
     p.add_argument("--corner-angle", type=float, default=45.0, help="corner angle in degrees (default 45)")
     p.add_argument("--min-line-length", type=float, default=None,
                    help="ridge lines with an open end and closed ridge loops shorter than this (absolute) are "
-                        "not kept as features (default: the target length; 0 keeps every ridge)")
+                        "not kept as features (default: twice the target length; 0 keeps every ridge)")
     p.add_argument("--max-surface-error", type=float, default=0.0,
                    help="chord-error bound for curvature adaptation, absolute (default 0 = uniform size)")
     p.add_argument("--gradation", type=float, default=1.3, help="size gradation >= 1 (default 1.3)")
