@@ -24,6 +24,8 @@ constexpr size_t kMaxLastResortLoop = 16;  // longer loops left by the front sta
 // patch; a front stuck on a damaged input (a fuzzed blade with 150 zero-area faces and folds,
 // 1500 sides that never close) looked at 50000 per step and ran for a quarter of an hour.
 constexpr double kChecksPerStep = 100.0;
+// A side's new sides may be this long (x the local size), or 1.5 x the side itself.
+constexpr double kFarCandidate = 3.0;
 
 std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
 
@@ -359,8 +361,13 @@ bool PatchMesher::try_side(int s) {
     local(q);
     return accept(q);
   }
+  // Farther points, but none that would make a side much longer than the size: with the
+  // search radius growing with the side and the retries, such sides made longer ones in turn
+  // (armadillo at 1% with min_line_length 2%: faces up to 48 x target, left to local repair).
+  const double longest = std::max(kFarCandidate * h, 1.5 * L);
   for (; k < existing.size(); ++k) {
     const int q = existing[k].second;
+    if (std::max((out_.points[q] - pa).Norm(), (out_.points[q] - pb).Norm()) > longest) continue;
     if (valid_triangle(a, b, out_.points[q], q, normal_towards(q, normal), frame, h, min_angle_rad, near)) return accept(q);
   }
   return false;
