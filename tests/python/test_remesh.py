@@ -92,6 +92,9 @@ def remesh_and_compare(name):
     assert topo["connected_components_number"] == topo_in["connected_components_number"]
     e, oriented = edges(out)
     assert oriented
+    # No face spans several elements (the front once chained long sides; local repair hid them).
+    v_out = out.vertex_matrix()
+    assert np.linalg.norm(v_out[e[:, 0]] - v_out[e[:, 1]], axis=1).max() <= 3 * target
 
     # Features: every input corner is an output vertex; line points lie on the input ridges.
     v = out.vertex_matrix()
