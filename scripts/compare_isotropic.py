@@ -8,6 +8,10 @@ Writes <out>/remesh_compare.json, <out>/remesh_compare.md, <out>/remesh_min_angl
 and, with --benchmark-md, benchmarks/remesh.md.
 
     MESHREGRID_PLUGIN_DIR=build/plugins .venv/bin/python scripts/compare_isotropic.py
+
+With --faces N each mesh gets the target length that gives about N equilateral output triangles
+over its area instead (the issue measured Netgen's quality on a CAD part at about 200k output
+triangles); --benchmark-md then writes benchmarks/remesh_<N/1000>k.md.
 """
 import argparse
 import datetime
@@ -219,6 +223,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--meshes", nargs="*", default=MESHES, help="paths relative to ../shared/data")
     ap.add_argument("--percent", type=float, default=1.0, help="target length in %% of the diagonal (default 1)")
+    ap.add_argument("--faces", type=int, default=0,
+                    help="instead of --percent: per mesh, the target length for about this many output triangles")
     ap.add_argument("--ridge-angle", type=float, default=30.0)
     ap.add_argument("--min-line", type=float, default=2.0,
                     help="our min_line_length in units of the target length (default 2, the filter's default; "
@@ -247,6 +253,9 @@ def main(argv=None):
         ms.set_current_mesh(src_id)
         diag = ms.current_mesh().bounding_box().diagonal()
         target = args.percent / 100 * diag
+        if args.faces > 0:  # equilateral triangles of side L have area sqrt(3)/4 L^2
+            area = ms.get_geometric_measures()["surface_area"]
+            target = float(np.sqrt(4 * area / (np.sqrt(3) * args.faces)))
         in_ridges = ridges(ms.current_mesh(), args.ridge_angle)
         t = time.perf_counter()
         res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(target), ridge_angle=args.ridge_angle,
@@ -300,11 +309,16 @@ def main(argv=None):
     print(md)
     if args.benchmark_md:
         cmd = ("MESHREGRID_PLUGIN_DIR=build/plugins .venv/bin/python scripts/compare_isotropic.py --benchmark-md"
+               + (f" --faces {args.faces}" if args.faces > 0 else "")
+               + (f" --meshes {' '.join(args.meshes)}" if args.meshes != MESHES else "")
                + (f" --peers '{args.peers}'" if args.peers != "netgen,mmg" else ""))
-        text = (f"# Advancing-front remeshing vs MeshLab isotropic remeshing\n\n"
+        size = (f"Target length per mesh for about {args.faces} equilateral output triangles over its area"
+                if args.faces > 0 else f"Target length {args.percent}% of the bounding-box diagonal")
+        title = f" at about {args.faces // 1000}k output triangles" if args.faces > 0 else ""
+        text = (f"# Advancing-front remeshing vs MeshLab isotropic remeshing{title}\n\n"
                 f"Command: `{cmd}`  \nMachine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
                 f"{platform.system()}  \nDate: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC  \n"
-                f"Target length {args.percent}% of the bounding-box diagonal, ridge/feature angle {args.ridge_angle} deg, "
+                f"{size}, ridge/feature angle {args.ridge_angle} deg, "
                 f"our min_line_length {args.min_line} x target. "
                 f"Times include the filters only. Peers Netgen and MMG (python/requirements-peers.txt) run each in "
                 f"a child process; a crash is left out of the table. Hausdorff: two-sided, PyMeshLab sampling, over "
@@ -314,7 +328,8 @@ def main(argv=None):
                 f"(input ridges: every {args.ridge_angle}-degree ridge, min_line_length 0). "
                 f"topology_kept: same boundary loops (PyMeshLab number_holes), genus and components as the input.\n\n"
                 + md + f"\nMinimum-angle histograms: `{out / 'remesh_min_angle_hist.png'}`.\n")
-        (REPO / "benchmarks" / "remesh.md").write_text(text)
+        name = f"remesh_{args.faces // 1000}k.md" if args.faces > 0 else "remesh.md"
+        (REPO / "benchmarks" / name).write_text(text)
     return 0
 
 
