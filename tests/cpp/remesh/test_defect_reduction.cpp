@@ -3,6 +3,7 @@
 // smallest angle below min(old, floor), keeping every point on the input surface.
 #include "remesh/defect_reduction.h"
 #include "remesh/triangle_geometry.h"
+#include "output_lattice.h"
 #include "unit_square.h"
 
 #include <gtest/gtest.h>
@@ -17,30 +18,10 @@ using namespace mr::remesh;
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
-constexpr int kN = 10;  // cells per side
+constexpr int kN = test::kLatticeCells;
 
-int id(int i, int j) { return j * (kN + 1) + i; }
-
-// The unit square as kN x kN cells, each split by its rising diagonal: a triangular lattice
-// (inner points have 6 neighbours). Border points are line points, the four corners corners.
-OutputMesh lattice(const SurfaceLocator& locator) {
-  OutputMesh out;
-  for (int j = 0; j <= kN; ++j)
-    for (int i = 0; i <= kN; ++i) {
-      const Point3 p(double(i) / kN, double(j) / kN, 0);
-      const bool border = i == 0 || j == 0 || i == kN || j == kN;
-      const bool corner = (i == 0 || i == kN) && (j == 0 || j == kN);
-      const int host = locator.locate(p, -1, Point3(0, 0, 1), -1, 0.2).face;
-      out.add_point(p, host, corner ? PointKind::Corner : border ? PointKind::Line : PointKind::Free);
-    }
-  for (int j = 0; j < kN; ++j)
-    for (int i = 0; i < kN; ++i) {
-      out.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      out.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  out.face_patch.assign(out.faces.size(), 0);
-  return out;
-}
+int id(int i, int j) { return test::lattice_id(i, j); }
+OutputMesh lattice(const SurfaceLocator& locator) { return test::unit_lattice(locator); }
 
 // Swaps edge a-b (two faces) to the edge between their opposite points.
 void swap_edge(OutputMesh& out, int a, int b) {
@@ -94,11 +75,7 @@ bool one_swap_lowers_deviation(const OutputMesh& out) {
   return false;
 }
 
-double worst_angle(const OutputMesh& out) {
-  double w = 1e9;
-  for (const auto& t : out.faces) w = std::min(w, min_angle(out.points[t[0]], out.points[t[1]], out.points[t[2]]));
-  return w;
-}
+using test::worst_angle;
 
 }  // namespace
 

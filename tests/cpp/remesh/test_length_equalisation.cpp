@@ -4,6 +4,7 @@
 // min(old, floor); line and corner points never go.
 #include "remesh/length_equalisation.h"
 #include "remesh/triangle_geometry.h"
+#include "output_lattice.h"
 #include "unit_square.h"
 
 #include <gtest/gtest.h>
@@ -18,31 +19,11 @@ using namespace mr::remesh;
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
-constexpr int kN = 10;     // cells per side: edges of 0.1, diagonals of 0.141
+constexpr int kN = test::kLatticeCells;  // edges of 0.1, diagonals of 0.141
 constexpr double kH = 0.11;  // so that all of them are in range
 
-int id(int i, int j) { return j * (kN + 1) + i; }
-
-// The unit square as kN x kN cells split by their rising diagonals; border points are line
-// points, the four corners corners.
-OutputMesh lattice(const SurfaceLocator& locator) {
-  OutputMesh out;
-  for (int j = 0; j <= kN; ++j)
-    for (int i = 0; i <= kN; ++i) {
-      const Point3 p(double(i) / kN, double(j) / kN, 0);
-      const bool border = i == 0 || j == 0 || i == kN || j == kN;
-      const bool corner = (i == 0 || i == kN) && (j == 0 || j == kN);
-      out.add_point(p, locator.locate(p, -1, Point3(0, 0, 1), -1, 0.2).face,
-                    corner ? PointKind::Corner : border ? PointKind::Line : PointKind::Free);
-    }
-  for (int j = 0; j < kN; ++j)
-    for (int i = 0; i < kN; ++i) {
-      out.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      out.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  out.face_patch.assign(out.faces.size(), 0);
-  return out;
-}
+int id(int i, int j) { return test::lattice_id(i, j); }
+OutputMesh lattice(const SurfaceLocator& locator) { return test::unit_lattice(locator); }
 
 int edges_out_of_range(const OutputMesh& out) {
   std::set<std::pair<int, int>> edges;
@@ -56,11 +37,7 @@ int edges_out_of_range(const OutputMesh& out) {
   return n;
 }
 
-double worst_angle(const OutputMesh& out) {
-  double w = 1e9;
-  for (const auto& t : out.faces) w = std::min(w, min_angle(out.points[t[0]], out.points[t[1]], out.points[t[2]]));
-  return w;
-}
+using test::worst_angle;
 
 }  // namespace
 
