@@ -34,7 +34,7 @@ double size_at(const OutputMesh& out, const SurfaceLocator& locator, const SizeF
 class EdgeLengthMoves {
 public:
   EdgeLengthMoves(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const SurfaceLocator& locator,
-                    const SizeField& size, const std::vector<char>& movable, double floor)
+                  const SizeField& size, const std::vector<char>& movable, double floor)
       : out_(out), fixed_(fixed), locator_(locator), size_(size), movable_(movable), floor_(floor),
         star_(out.points.size()), h_(out.points.size()) {
     for (size_t f = 0; f < out.faces.size(); ++f)

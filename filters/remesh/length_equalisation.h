@@ -1,7 +1,8 @@
 // Edge lengths after the front: where fronts meet, and around corners and short lines that
 // must stay, the front leaves edges shorter than 0.7 or longer than 1.4 x the local size
-// (armadillo at 1% with 30-degree ridges: 9.5% of the edges). Two moves of free points bring
-// them back, each only when its faces stay above min(their old smallest angle, `floor`):
+// (armadillo at 1% with 30-degree ridges and min_line_length = target: 9.5% of the edges). Three
+// moves bring them back, each only when its faces stay above min(their old smallest angle,
+// `floor`):
 // - a free point slides, on the input surface, towards where its edges have the local size;
 // - a free point at the short end of an edge collapses onto the other end;
 // - a long edge is split at its middle.
