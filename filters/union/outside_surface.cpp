@@ -17,11 +17,6 @@ double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] *
 V3 cross(const V3& a, const V3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-V3 unit(V3 a) {
-  const double n = std::sqrt(dot(a, a));
-  if (n > 0) for (double& x : a) x /= n;
-  return a;
-}
 
 int find(std::vector<int>& uf, int x) {
   while (uf[x] != x) x = uf[x] = uf[uf[x]];
