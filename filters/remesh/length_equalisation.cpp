@@ -16,10 +16,6 @@ constexpr double kCollapseDeviation = 0.05;
 // New faces may not turn by more than acos(0.7) from the faces they replace.
 constexpr double kFoldCos = 0.7;
 
-double face_angle(const OutputMesh& out, const std::array<int, 3>& f) {
-  return min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]);
-}
-
 // Size at point v: the size field at its place on its host face.
 double size_at(const OutputMesh& out, const SurfaceLocator& locator, const SizeField& size, int v) {
   const int f = out.host[v];
@@ -152,7 +148,7 @@ private:
     if (common != opposite) return -1;
     double before = 1e9;
     for (int x : {v, w})
-      for (int k : star_[x]) before = std::min(before, face_angle(out_, out_.faces[k]));
+      for (int k : star_[x]) before = std::min(before, min_angle(out_.points, out_.faces[k]));
     const double limit = std::min(before, floor_);
     const Point3& p = out_.points[w];
     double after = 1e9;
@@ -225,7 +221,7 @@ private:
     if (pr.face < 0) return false;
     const Point3 m = pr.point;
     const double hm = size_.at(pr.face, pr.bary);
-    const double limit = std::min({face_angle(out_, out_.faces[f]), face_angle(out_, out_.faces[g]), floor_});
+    const double limit = std::min({min_angle(out_.points, out_.faces[f]), min_angle(out_.points, out_.faces[g]), floor_});
     const std::array<Point3, 3> q[4] = {{out_.points[a], m, out_.points[c]}, {m, out_.points[b], out_.points[c]},
                                         {out_.points[b], m, out_.points[d]}, {m, out_.points[a], out_.points[d]}};
     for (int k = 0; k < 4; ++k) {
@@ -313,7 +309,7 @@ int relax_edge_lengths(OutputMesh& out, const SurfaceLocator& locator, const Siz
     aim /= double(nb.size());
     const int patch = out.face_patch[ring[begin[v]]];
     double before = 1e9;
-    for (int k = begin[v]; k < begin[v + 1]; ++k) before = std::min(before, face_angle(out, out.faces[ring[k]]));
+    for (int k = begin[v]; k < begin[v + 1]; ++k) before = std::min(before, min_angle(out.points, out.faces[ring[k]]));
     const Point3 normal = s.face_normal[out.host[v]];
     for (double t : {1.0, 0.5, 0.25}) {
       const Point3 want = old + (aim - old) * t;
@@ -326,7 +322,7 @@ int relax_edge_lengths(OutputMesh& out, const SurfaceLocator& locator, const Siz
       bool folded = false;
       for (int k = begin[v]; k < begin[v + 1]; ++k) {
         const auto& f = out.faces[ring[k]];
-        after = std::min(after, face_angle(out, f));
+        after = std::min(after, min_angle(out.points, f));
         folded |= unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]) * s.face_normal[pr.face] < 0.5;
       }
       if (folded || after < std::min(before, floor)) {

@@ -8,6 +8,7 @@
 // - a long edge is split at its middle.
 #pragma once
 
+#include "remesh/mesh_measures.h"
 #include "remesh/output_mesh.h"
 #include "remesh/size_field.h"
 #include "remesh/surface_locator.h"
@@ -17,10 +18,6 @@
 #include <vector>
 
 namespace mr::remesh {
-
-/// Edges within [kShortEdge, kLongEdge] x the local size are in range (issue #3's measure).
-constexpr double kShortEdge = 0.7;
-constexpr double kLongEdge = 1.4;
 
 /// Moves free points of `movable` with an edge out of range to where fewer of their edges are
 /// out of range (or, as many, nearer to the size), projected onto the input. Returns the moves.

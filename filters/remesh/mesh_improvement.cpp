@@ -35,10 +35,6 @@ constexpr double kLengthFloor = 30.0 * 3.14159265358979323846 / 180.0;
 // Sweeps of the post-pass that also search swap sequences against valence defects.
 constexpr int kDefectSweeps = 2;
 
-double face_min_angle(const OutputMesh& out, const std::array<int, 3>& f) {
-  return min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]);
-}
-
 // What a swap of edge x-y (faces x,y,c and y,x,d) to c-d would do.
 struct SwapCandidate {
   int x, y, c, d;
@@ -69,8 +65,8 @@ int swap_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, 
       const Point3 nb = unit_normal(out.points[d], out.points[y], out.points[c]);
       if (na * n < 0.9 || nb * n < 0.9) continue;
       const std::array<int, 3> A = {x, d, c}, B = {d, y, c};
-      const SwapCandidate cand{x, y, c, d, std::min(face_min_angle(out, out.faces[fi]), face_min_angle(out, out.faces[p.g])),
-                               std::min(face_min_angle(out, A), face_min_angle(out, B))};
+      const SwapCandidate cand{x, y, c, d, std::min(min_angle(out.points, out.faces[fi]), min_angle(out.points, out.faces[p.g])),
+                               std::min(min_angle(out.points, A), min_angle(out.points, B))};
       if (!wanted(cand)) continue;
       sides.swap(out, p);
       ++swaps;
@@ -130,7 +126,7 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vecto
     double before = 1e9;
     for (int k = begin[v]; k < begin[v + 1]; ++k) {
       const auto& f = out.faces[ring[k]];
-      before = std::min(before, face_min_angle(out, f));
+      before = std::min(before, min_angle(out.points, f));
       for (int u : f) if (u != int(v)) { centre += out.points[u]; ++count; }
     }
     centre /= double(count);
@@ -143,7 +139,7 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vecto
     bool folded = false;
     for (int k = begin[v]; k < begin[v + 1]; ++k) {
       const auto& f = out.faces[ring[k]];
-      after = std::min(after, face_min_angle(out, f));
+      after = std::min(after, min_angle(out.points, f));
       if (unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]) * s.face_normal[pr.face] < 0.5) folded = true;
     }
     if (folded || after <= before + 1e-9) { out.points[v] = old; continue; }
@@ -178,7 +174,7 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
   for (const auto& e : feature_edges) fixed.insert(undirected(e[0], e[1]));
   ImprovementResult r;
   double worst = kValenceFloor;
-  for (const auto& f : out.faces) worst = std::min(worst, face_min_angle(out, f));
+  for (const auto& f : out.faces) worst = std::min(worst, min_angle(out.points, f));
   const double floor = std::max(worst, kValenceFloor);
   for (int it = 0; it < iterations; ++it) {
     int swaps = swap_pass(out, fixed, region) + valence_pass(out, fixed, region, floor);

@@ -46,7 +46,7 @@ Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, con
     const Projection pr = project(input_locator, mid, out.host[e.first], size.max_size(), reach);
     const double h = pr.face >= 0 ? size.at(pr.face, pr.bary) : size.max_size();
     const double len = (out.points[e.first] - out.points[e.second]).Norm();
-    if (len >= 0.7 * h && len <= 1.4 * h) in_range++;
+    if (len >= kShortEdge * h && len <= kLongEdge * h) in_range++;
     haus = std::max(haus, pr.distance);
   }
   m.edges_in_range = double(in_range) / double(edges.size());

@@ -7,11 +7,15 @@
 
 namespace mr::remesh {
 
+/// Edges within [kShortEdge, kLongEdge] x the local size are in range (issue #3's measure).
+constexpr double kShortEdge = 0.7;
+constexpr double kLongEdge = 1.4;
+
 struct Measures {
   double min_angle_deg = 0, mean_min_angle_deg = 0, edges_in_range = 0, hausdorff = 0;
 };
 
-/// Angles, the share of edges within [0.7,1.4] x the local size, and a two-sided Hausdorff
+/// Angles, the share of edges in range, and a two-sided Hausdorff
 /// estimate between `out` and the input surface of `input_locator`.
 Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, const SizeField& size);
 

@@ -5,6 +5,7 @@
 #include "common/tri_mesh.h"
 
 #include <array>
+#include <vector>
 
 namespace mr::remesh {
 
@@ -14,6 +15,11 @@ Point3 closest_point_on_triangle(const Point3& p, const Point3& a, const Point3&
 
 /// Smallest interior angle of triangle (a,b,c) in radians (0 for a degenerate one).
 double min_angle(const Point3& a, const Point3& b, const Point3& c);
+
+/// The same for face f of a triangle list over `points`.
+inline double min_angle(const std::vector<Point3>& points, const std::array<int, 3>& f) {
+  return min_angle(points[f[0]], points[f[1]], points[f[2]]);
+}
 
 /// Unit normal of (a,b,c) by the right-hand rule, zero if degenerate.
 Point3 unit_normal(const Point3& a, const Point3& b, const Point3& c);
