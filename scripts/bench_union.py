@@ -100,7 +100,7 @@ def time_meshlab(bodies, repeats):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=1)
-    ap.add_argument("--sizes", default="10,50,200,2000@2",
+    ap.add_argument("--sizes", default="10,50,200,800,2000@2",
                     help="sphere counts of the cluster sweep, N or N@SUBDIV (subdivision of that size)")
     ap.add_argument("--subdiv", type=int, default=3, help="sphere subdivision (3: 1280 triangles each)")
     ap.add_argument("--meshlab-max-bodies", type=int, default=50,
@@ -132,7 +132,8 @@ def main():
         rows.append(row)
     text = "\n".join([
         "## Union of intersecting bodies (`scripts/bench_union.py`)", "",
-        f"Command: `.venv/bin/python scripts/bench_union.py --sizes {args.sizes}` — {datetime.date.today()}, "
+        f"Command: `.venv/bin/python scripts/bench_union.py --sizes {args.sizes} --repeats {args.repeats}` — "
+        f"{datetime.date.today()}, "
         f"{platform.machine()} {platform.system()}, 2 cores shared with other jobs; best of {args.repeats}. "
         "Spheres: radius 0.5 (icospheres, subdivision 3 = 1280 triangles unless N@S says otherwise), random "
         "centres in a cube of side 0.9 n^(1/3) (seed 1). Ours: `generate_surface_intersection_union(bodies=1)` on one "
