@@ -26,7 +26,8 @@ bool diagonals_cross(int i, int j, int a, int b) {
 }  // namespace
 
 bool best_polygon_triangulation(const std::vector<V3>& ring, const V3& up, const std::function<bool(int, int)>& allowed,
-                                std::array<int, 2> forced, std::vector<std::array<int, 3>>& out, double& min_angle) {
+                                std::array<int, 2> forced, std::vector<std::array<int, 3>>& out, double& min_angle,
+                                double must_exceed) {
   const int k = int(ring.size());
   out.clear();
   if (k < 3) return false;
@@ -54,17 +55,20 @@ bool best_polygon_triangulation(const std::vector<V3>& ring, const V3& up, const
       if (!ok[at(i, j)]) continue;
       for (int m = i + 1; m < j; ++m) {
         const double left = best[at(i, m)], right = best[at(m, j)];
-        if (left < 0 || right < 0) continue;
+        // The triangle's angle is only needed when it could improve on the best so far
+        // and on the bound (branch and bound: the same result, fewer atan2).
+        const double sides = std::min(left, right);
+        if (left < 0 || right < 0 || sides <= best[at(i, j)] || sides <= must_exceed) continue;
         const V3 n = cross3(sub3(ring[m], ring[i]), sub3(ring[j], ring[i]));
         if (!(dot3(n, up) > 0)) continue;
-        const double q = std::min({smallest_angle(ring[i], ring[m], ring[j]), left, right});
-        if (q > best[at(i, j)]) {
+        const double q = std::min(smallest_angle(ring[i], ring[m], ring[j]), sides);
+        if (q > best[at(i, j)] && q > must_exceed) {
           best[at(i, j)] = q;
           apex[at(i, j)] = m;
         }
       }
     }
-  if (best[at(0, k - 1)] < 0) return false;
+  if (best[at(0, k - 1)] < 0 || !(best[at(0, k - 1)] > must_exceed)) return false;
   min_angle = best[at(0, k - 1)];
   std::vector<std::array<int, 2>> todo{{0, k - 1}};
   while (!todo.empty()) {

@@ -575,18 +575,18 @@ bool Collapser::try_remove_vertex(int v) {
   }
   std::vector<V3> at(k);
   for (int i = 0; i < k; ++i) at[i] = P(ring[i]);
-  std::vector<std::array<int, 3>> tris;
-  double after = 0;
-  if (!best_polygon_triangulation(
-          at, up, [&](int i, int j) { return !edge_exists(ring[i], ring[j]); }, forced, tris, after))
-    return false;
   double before = 1e300;
   bool any_cut = false;
   for (int f : fv) {
     before = std::min(before, min_angle(f));
     any_cut |= cut_[f] != 0;
   }
-  if (!(after > before) || (!any_cut && after < threshold_)) return false;
+  std::vector<std::array<int, 3>> tris;
+  double after = 0;
+  if (!best_polygon_triangulation(
+          at, up, [&](int i, int j) { return !edge_exists(ring[i], ring[j]); }, forced, tris, after, before))
+    return false;
+  if (!any_cut && after < threshold_) return false;
   // Each new face faces the way of the star and passes within the deviation bound of v.
   const V3 pv = P(v);
   double dv6 = 0;  // six times the volume change (the old faces span nothing seen from v)

@@ -379,6 +379,26 @@ TEST(UnionLinkTriangulation, BestTriangulationOfAHexagonAndItsConstraints) {
   EXPECT_FALSE(best_polygon_triangulation(hex, up, [](int, int) { return false; }, {-1, -1}, tris, angle));
 }
 
+TEST(UnionLinkTriangulation, BoundPrunesWithoutChangingTheBest) {
+  // An irregular 9-gon: the bound below the optimum gives the same triangles and angle as
+  // no bound; at or above the optimum there is no triangulation to give.
+  std::vector<V3> ring;
+  for (int i = 0; i < 9; ++i) {
+    const double r = 1 + 0.3 * std::sin(2.7 * i), t = 2 * M_PI * i / 9 + 0.1 * std::cos(1.3 * i);
+    ring.push_back({r * std::cos(t), r * std::sin(t), 0.05 * std::sin(5.0 * i)});
+  }
+  const V3 up{0, 0, 1};
+  auto allowed = [](int i, int j) { return (i + j) % 4 != 1; };
+  std::vector<std::array<int, 3>> free_tris, bound_tris;
+  double free_angle = 0, bound_angle = 0;
+  ASSERT_TRUE(best_polygon_triangulation(ring, up, allowed, {-1, -1}, free_tris, free_angle));
+  ASSERT_TRUE(best_polygon_triangulation(ring, up, allowed, {-1, -1}, bound_tris, bound_angle, 0.9 * free_angle));
+  EXPECT_EQ(bound_tris, free_tris);
+  EXPECT_EQ(bound_angle, free_angle);
+  EXPECT_FALSE(best_polygon_triangulation(ring, up, allowed, {-1, -1}, bound_tris, bound_angle, free_angle));
+  EXPECT_FALSE(best_polygon_triangulation(ring, up, allowed, {-1, -1}, bound_tris, bound_angle, 1.0));
+}
+
 TEST(UnionLinkTriangulation, ReflexCornerIsNeverCut) {
   // An arrow: corner 2 is reflex, so diagonal (1, 3) would leave the polygon; the only
   // triangulations use diagonals from the reflex corner, and all triangles turn one way.
