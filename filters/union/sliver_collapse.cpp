@@ -22,6 +22,12 @@ constexpr double kSmoothStarCos = 0.7;
 constexpr double kNoRatchetBelow = kPi / 180;
 // Larger stars (fans of CAD plates) are left to the other moves: their link has too many triangulations to weigh each time.
 constexpr int kMaxRemovedValence = 12;
+// A slide along a line must raise its star's worst angle by this fraction: smaller gains
+// were mostly line vertices sliding to and fro on CAD creases, pass after pass, each
+// slide making the whole neighbourhood try every move again.
+constexpr double kMinSlideGain = 0.1;
+// Faces at a vertex whose normals differ by more than ~30 degrees: it lies on a crease.
+constexpr double kCreaseCos = 0.866;
 
 /// Vertex x is a corner of face t. Written out: std::find on the three corners was an
 /// out-of-line call, run a few hundred thousand times by the collapse candidates.
@@ -118,6 +124,26 @@ private:
     for (int f : vf_[x])
       if (alive_[f])
         for (int y : r_.faces[f]) changed_[y] = 1;
+  }
+  /// Two faces around x meet at more than a crease angle (CAD edges, not curved patches).
+  bool on_crease(int x) const {
+    V3 first{0, 0, 0};
+    bool have = false;
+    for (int f : vf_[x]) {
+      if (!alive_[f]) continue;
+      const auto& t = r_.faces[f];
+      V3 n = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
+      const double l = norm(n);
+      if (!(l > 0)) continue;
+      for (double& c : n) c /= l;
+      if (!have) {
+        first = n;
+        have = true;
+      } else if (dot(first, n) < kCreaseCos) {
+        return true;
+      }
+    }
+    return false;
   }
   bool edge_exists(int a, int b) const {
     for (int f : vf_[a])
@@ -266,10 +292,15 @@ bool Collapser::flat_star_refilled(int v) {
 bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2, or,
   // where two lines pass closer than a sliver allows (bodies nearly touching on a third one),
-  // join a vertex w of the other line: the lines then meet at w.
+  // join a vertex w of the other line: the lines then meet at w. Or bend onto a vertex w
+  // of an input crease within the deviation bound: a line running a hair beside a plate's
+  // edge (CAD parts that nearly line up, box.STL) leaves a strip that no move inside it
+  // can mend. Only at creases: on curved bodies a bent line traps worse slivers later.
   const bool vw_line = line_.count(ekey(v, w)) > 0;
   const bool joins_line = line_degree_[v] == 2 && !vw_line && line_degree_[w] > 0;
-  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] >= 2) && !joins_line) return false;
+  const bool bends_line = line_degree_[v] == 2 && !vw_line && line_degree_[w] == 0 &&
+                          norm(sub3(P(v), P(w))) <= max_dev_ && on_crease(w);
+  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] >= 2) && !joins_line && !bends_line) return false;
   std::vector<int>& fv = scratch_fv_;
   std::vector<int>& fw = scratch_fw_;
   live_faces(v, fv);
@@ -351,8 +382,9 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
         if (!(ln > 0) || dot(n_old, n_new) <= 0.1 * lo * ln) return false;
         if (std::fabs(dot(sub3(P(has_v ? v : w), q[0]), n_new)) / ln > max_dev_) return false;
         const double a = smallest_angle(q[0], q[1], q[2]);
-        // A face the cut did not make is never turned into a sliver (nothing would treat it).
-        if (!cut_[f] && a < threshold_ && a < a0) return false;
+        // A face the cut did not make is not turned into a worse sliver (nothing would
+        // treat it), but by a bend, which then hands it to the step (below).
+        if (!bends_line && !cut_[f] && a < threshold_ && a < a0) return false;
         after = std::min(after, a);
         bad_after += a < threshold_;
       }
@@ -402,7 +434,10 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   for (int x : nw) changed_[x] = 1;
   if (moved) {
     r_.vertices[w] = target;
-    for (int f : fw) refile(f);
+    for (int f : fw) {
+      refile(f);
+      if (bends_line) cut_[f] = 1;  // reshaped by the step: treated like the cut's own faces
+    }
   }
   const std::vector<int> link = nv;  // copies: compensate() reuses the scratch vectors
   for (int f : fv) {
@@ -416,6 +451,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
       if (x == v) x = w;
     vf_[w].push_back(f);
     refile(f);
+    if (bends_line) cut_[f] = 1;  // likewise
   }
   vf_[v].clear();
   // Line edges of v now start at w (v's neighbours are the vertices of its old faces).
@@ -680,7 +716,7 @@ bool Collapser::try_slide_on_line(int x) {
       if (fine && worst > best) { best = worst; best_at = at; }
     }
   }
-  if (!(best > before)) return false;
+  if (!(best > before * (1 + kMinSlideGain))) return false;
   // Six times the volume change of the move, given back by a free neighbour or paid.
   double dv6 = 0;
   for (int f : fx) {

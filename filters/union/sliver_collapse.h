@@ -11,7 +11,8 @@ namespace mr::surface_union {
 
 /// Collapses slivers of `r` in place (vertices, faces, line_edge, compacted);
 /// returns the number of collapses. Only faces with `cut[f]` (made by the cut) are
-/// treated; slivers the input already had are left as they are.
+/// treated; slivers the input already had are left as they are, but for those a line
+/// bent onto a crease vertex reshapes (they are then treated too).
 /// `max_deviation` bounds each move (fraction of the bbox diagonal); `max_volume_change`
 /// bounds the total volume change of all moves (fraction of the volume).
 int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,

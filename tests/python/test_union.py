@@ -553,3 +553,21 @@ def test_sliver_step_reaches_the_input_minimum_on_rabbit_obj():
     ms.set_current_mesh(0)
     unite(ms, bodies=COMPONENTS)
     assert angles(ms.mesh(ms.mesh_number() - 1)).min() >= input_min - 1e-9
+
+def test_sliver_step_on_box_stl_bends_lines_onto_plate_edges():
+    # box.STL's plates nearly line up: intersection lines run 0.002 beside rows of plate
+    # corners, and the strips between them hold needles that no move inside the strip can
+    # mend. A line vertex may bend onto a crease vertex within the deviation bound.
+    # Measured: smallest angle 0.231 deg (0.115 before), 4 faces under the input's own
+    # 0.449 deg (12 before), 889 under 5 deg (994 before; the input has 1261). The issue's
+    # reading (none under the input's minimum) is not reached: the 4 left lie in facets
+    # that earlier moves tilted, bounded by creases on all sides.
+    ms, parts = multicomponent("box.STL")
+    input_min = angles(ms.mesh(0)).min()
+    ms.set_current_mesh(0)
+    r = unite(ms, bodies=COMPONENTS)
+    out = angles(ms.mesh(ms.mesh_number() - 1)).min(axis=1)
+    assert r["min_angle"] == pytest.approx(out.min(), abs=1e-9)
+    assert out.min() >= 0.2
+    assert (out < input_min - 1e-9).sum() <= 4
+    assert (out < 5).sum() <= 900
