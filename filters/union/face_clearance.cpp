@@ -338,19 +338,29 @@ int& FaceGrid::head_or_new(int64_t key) {
 }
 
 void FaceGrid::add(int f) {
-  remove(f);  // stale entries would make every later lookup longer
   V3 lo, hi;
   box(f, lo, hi);
-  boxes_[f] = {lo, hi};
   // The finest level where the face's box is no larger than a cell: at most 2 cells a side.
   const double size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   int level = 0;
   while (level < kLevels - 1 && size > cell_ * double(int64_t(1) << (2 * level))) ++level;
+  int64_t a[3], b[3];
+  for (int k = 0; k < 3; ++k) { a[k] = cell_of(lo[k], k, level); b[k] = cell_of(hi[k], k, level); }
+  if (level_[f] == level) {
+    // Still in the same cells (most moves of the sliver step are small): only the box changes.
+    const auto& [old_lo, old_hi] = boxes_[f];
+    bool same = true;
+    for (int k = 0; k < 3; ++k) same = same && cell_of(old_lo[k], k, level) == a[k] && cell_of(old_hi[k], k, level) == b[k];
+    if (same) {
+      boxes_[f] = {lo, hi};
+      return;
+    }
+  }
+  remove(f);  // stale entries would make every later lookup longer
+  boxes_[f] = {lo, hi};
   levels_used_ = std::max(levels_used_, level + 1);
   level_[f] = level;
   level_faces_[level].push_back(f);  // may repeat: lookups see each face once
-  int64_t a[3], b[3];
-  for (int k = 0; k < 3; ++k) { a[k] = cell_of(lo[k], k, level); b[k] = cell_of(hi[k], k, level); }
   for (int64_t i = a[0]; i <= b[0]; ++i)
     for (int64_t j = a[1]; j <= b[1]; ++j)
       for (int64_t k = a[2]; k <= b[2]; ++k) {

@@ -49,6 +49,12 @@ public:
     for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
     volume_budget_ = max_volume_change * std::fabs(volume);
     budget_scale_ = std::fabs(volume);
+    {  // Each star's list allocated once at its size (and a little room for collapses).
+      std::vector<int> valence(r.vertices.size(), 0);
+      for (const auto& t : r.faces)
+        for (int v : t) ++valence[size_t(v)];
+      for (size_t v = 0; v < vf_.size(); ++v) vf_[v].reserve(size_t(valence[v]) + 2);
+    }
     for (int f = 0; f < int(r.faces.size()); ++f)
       for (int v : r.faces[f]) vf_[v].push_back(f);
     V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
