@@ -1,10 +1,12 @@
 #include "union/body_validation.h"
 
 #include "common/errors.h"
+#include "common/parallel_for.h"
 #include "union/exact.h"
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <vector>
 
 namespace mr::surface_union {
@@ -20,70 +22,84 @@ bool degenerate(const Body& b, const std::array<int, 3>& f) {
   return orient2d(p, q, r, 0, 1) == 0 && orient2d(p, q, r, 1, 2) == 0 && orient2d(p, q, r, 2, 0) == 0;
 }
 
+/// Checks body i and turns it outward if it is inward; returns whether it did.
+bool validate_body(Body& b, size_t i) {
+  const std::string name = label(b, i);
+  if (b.vertices.empty() || b.faces.empty()) throw InvalidInput(name + " is empty: it has no faces");
+  for (const auto& v : b.vertices)
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+      throw InvalidInput(name + " has NaN or infinite vertex coordinates: fix or delete those vertices");
+  const int nv = int(b.vertices.size());
+  for (const auto& f : b.faces) {
+    for (int z = 0; z < 3; ++z)
+      if (f[z] < 0 || f[z] >= nv) throw InvalidInput(name + " has a face with an invalid vertex index");
+    if (degenerate(b, f))
+      throw InvalidInput(name + " has degenerate (zero-area) faces: remove them first "
+                                "(Cleaning and Repairing > Remove Zero Area Faces)");
+  }
+  // Directed edge counts: closed, manifold and consistently oriented means each
+  // undirected edge is used exactly once in each direction.
+  // Half-edges as (min, max, forward) sorted, so each undirected edge is one run.
+  std::vector<std::array<int, 3>> half;
+  half.reserve(3 * b.faces.size());
+  for (const auto& f : b.faces)
+    for (int z = 0; z < 3; ++z) {
+      const int u = f[z], v = f[(z + 1) % 3];
+      half.push_back({std::min(u, v), std::max(u, v), u < v ? 1 : 0});
+    }
+  std::sort(half.begin(), half.end());
+  int open = 0, nonmanifold = 0, misoriented = 0;
+  for (size_t i = 0; i < half.size();) {
+    size_t j = i;
+    int forward = 0;
+    while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) forward += half[j++][2];
+    const size_t n = j - i;
+    if (n == 1) ++open;
+    else if (n > 2) ++nonmanifold;
+    else if (forward != 1) ++misoriented;
+    i = j;
+  }
+  if (open) throw TopologyError(name + " is not closed (" + std::to_string(open) +
+                                " boundary edges): close its holes first (Remeshing > Close Holes), or weld "
+                                "duplicate vertices if it is a triangle soup such as an STL file");
+  if (nonmanifold)
+    throw TopologyError(name + " is non-manifold (" + std::to_string(nonmanifold) +
+                        " edges with more than two faces): repair it first (Cleaning and Repairing > "
+                        "Repair non Manifold Edges)");
+  if (misoriented)
+    throw TopologyError(name + " is not consistently oriented (" + std::to_string(misoriented) +
+                        " edges): reorient it first (Cleaning and Repairing > Re-Orient all faces coherently)");
+  // Signed volume decides inward/outward.
+  double vol = 0;
+  for (const auto& f : b.faces) {
+    const auto &p = b.vertices[f[0]], &q = b.vertices[f[1]], &r = b.vertices[f[2]];
+    vol += p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) + p[2] * (q[0] * r[1] - q[1] * r[0]);
+  }
+  if (vol < 0) {
+    for (auto& f : b.faces) std::swap(f[1], f[2]);
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int validate_bodies(std::vector<Body>& bodies) {
   if (bodies.empty()) throw InvalidInput("there are no bodies: give visible layers or a mesh with closed components");
-  int flipped = 0;
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    Body& b = bodies[i];
-    const std::string name = label(b, i);
-    if (b.vertices.empty() || b.faces.empty()) throw InvalidInput(name + " is empty: it has no faces");
-    for (const auto& v : b.vertices)
-      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
-        throw InvalidInput(name + " has NaN or infinite vertex coordinates: fix or delete those vertices");
-    const int nv = int(b.vertices.size());
-    for (const auto& f : b.faces) {
-      for (int z = 0; z < 3; ++z)
-        if (f[z] < 0 || f[z] >= nv) throw InvalidInput(name + " has a face with an invalid vertex index");
-      if (degenerate(b, f))
-        throw InvalidInput(name + " has degenerate (zero-area) faces: remove them first "
-                                  "(Cleaning and Repairing > Remove Zero Area Faces)");
+  // Bodies are independent: checked in parallel, and the first bad one in order is the
+  // one reported, whatever thread found it.
+  std::vector<std::exception_ptr> error(bodies.size());
+  std::vector<char> flipped(bodies.size(), 0);
+  parallel_for(bodies.size(), 1, [&](size_t i) {
+    try {
+      flipped[i] = validate_body(bodies[i], i);
+    } catch (...) {
+      error[i] = std::current_exception();
     }
-    // Directed edge counts: closed, manifold and consistently oriented means each
-    // undirected edge is used exactly once in each direction.
-    // Half-edges as (min, max, forward) sorted, so each undirected edge is one run.
-    std::vector<std::array<int, 3>> half;
-    half.reserve(3 * b.faces.size());
-    for (const auto& f : b.faces)
-      for (int z = 0; z < 3; ++z) {
-        const int u = f[z], v = f[(z + 1) % 3];
-        half.push_back({std::min(u, v), std::max(u, v), u < v ? 1 : 0});
-      }
-    std::sort(half.begin(), half.end());
-    int open = 0, nonmanifold = 0, misoriented = 0;
-    for (size_t i = 0; i < half.size();) {
-      size_t j = i;
-      int forward = 0;
-      while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) forward += half[j++][2];
-      const size_t n = j - i;
-      if (n == 1) ++open;
-      else if (n > 2) ++nonmanifold;
-      else if (forward != 1) ++misoriented;
-      i = j;
-    }
-    if (open) throw TopologyError(name + " is not closed (" + std::to_string(open) +
-                                  " boundary edges): close its holes first (Remeshing > Close Holes), or weld "
-                                  "duplicate vertices if it is a triangle soup such as an STL file");
-    if (nonmanifold)
-      throw TopologyError(name + " is non-manifold (" + std::to_string(nonmanifold) +
-                          " edges with more than two faces): repair it first (Cleaning and Repairing > "
-                          "Repair non Manifold Edges)");
-    if (misoriented)
-      throw TopologyError(name + " is not consistently oriented (" + std::to_string(misoriented) +
-                          " edges): reorient it first (Cleaning and Repairing > Re-Orient all faces coherently)");
-    // Signed volume decides inward/outward.
-    double vol = 0;
-    for (const auto& f : b.faces) {
-      const auto &p = b.vertices[f[0]], &q = b.vertices[f[1]], &r = b.vertices[f[2]];
-      vol += p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) + p[2] * (q[0] * r[1] - q[1] * r[0]);
-    }
-    if (vol < 0) {
-      for (auto& f : b.faces) std::swap(f[1], f[2]);
-      ++flipped;
-    }
-  }
-  return flipped;
+  });
+  for (const auto& e : error)
+    if (e) std::rethrow_exception(e);
+  return int(std::count(flipped.begin(), flipped.end(), 1));
 }
 
 }  // namespace mr::surface_union

@@ -17,7 +17,6 @@
 #include <map>
 #include <numeric>
 #include <set>
-#include <unordered_map>
 
 namespace mr::surface_union {
 
@@ -43,42 +42,56 @@ bool strictly_inside(const PointTable& pts, const std::vector<int>& vertex_point
 }
 
 void chain_lines(Result& r) {
-  // Undirected line edges and vertex degrees.
-  std::set<std::pair<int, int>> edges;
+  // Undirected line edges, each once, and each vertex's line edges in flat arrays
+  // (sets and a hash map of vectors took ~0.14 s on the 2000-sphere cluster).
+  std::vector<std::pair<int, int>> edges;
   for (size_t f = 0; f < r.faces.size(); ++f)
     for (int z = 0; z < 3; ++z)
       if (r.line_edge[f][z]) {
         const int u = r.faces[f][z], w = r.faces[f][(z + 1) % 3];
-        edges.insert({std::min(u, w), std::max(u, w)});
+        edges.push_back({std::min(u, w), std::max(u, w)});
       }
-  std::unordered_map<int, std::vector<int>> adj;
-  for (const auto& [u, w] : edges) { adj[u].push_back(w); adj[w].push_back(u); }
-  std::set<std::pair<int, int>> used;
-  auto take = [&](int u, int w) { return used.insert({std::min(u, w), std::max(u, w)}).second; };
-  auto walk = [&](int start, int next) {
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const size_t nv = r.vertices.size();
+  std::vector<int> first(nv + 1, 0);  // vertex x's edges: at_vertex[first[x] .. first[x + 1])
+  for (const auto& [u, w] : edges) { ++first[size_t(u) + 1]; ++first[size_t(w) + 1]; }
+  for (size_t x = 0; x < nv; ++x) first[x + 1] += first[x];
+  std::vector<int> at_vertex(2 * edges.size()), fill(first.begin(), first.end() - 1);
+  for (int e = 0; e < int(edges.size()); ++e) {
+    at_vertex[size_t(fill[size_t(edges[size_t(e)].first)]++)] = e;
+    at_vertex[size_t(fill[size_t(edges[size_t(e)].second)]++)] = e;
+  }
+  auto degree = [&](int x) { return first[size_t(x) + 1] - first[size_t(x)]; };
+  std::vector<char> used(edges.size(), 0);
+  // A polyline from `start` along edge e, through vertices where two lines meet, until a
+  // junction, an end or the start again.
+  auto walk = [&](int start, int e) {
     std::vector<int> line{start};
-    int prev = start, cur = next;
-    take(prev, cur);
+    int cur = start;
+    used[size_t(e)] = 1;
     while (true) {
+      cur = edges[size_t(e)].first == cur ? edges[size_t(e)].second : edges[size_t(e)].first;
       line.push_back(cur);
-      if (adj[cur].size() != 2 || cur == start) break;
-      const int nxt = adj[cur][0] == prev ? adj[cur][1] : adj[cur][0];
-      if (!take(cur, nxt)) break;
-      prev = cur;
-      cur = nxt;
+      if (degree(cur) != 2 || cur == start) break;
+      const int* two = &at_vertex[size_t(first[size_t(cur)])];
+      const int next = two[0] == e ? two[1] : two[0];
+      if (used[size_t(next)]) break;
+      used[size_t(next)] = 1;
+      e = next;
     }
     const bool closed = line.front() == line.back() && line.size() > 2;
     if (closed) line.pop_back();
     r.lines.push_back(line);
     r.line_closed.push_back(closed);
   };
-  for (auto& [u, nb] : adj)
-    if (nb.size() != 2)
-      for (int w : nb)
-        if (!used.count({std::min(u, w), std::max(u, w)})) walk(u, w);
-  for (auto& [u, nb] : adj)
-    for (int w : nb)
-      if (!used.count({std::min(u, w), std::max(u, w)})) walk(u, w);
+  // Open lines and lines between junctions first, then closed loops.
+  for (int pass = 0; pass < 2; ++pass)
+    for (int x = 0; x < int(nv); ++x) {
+      if (pass == 0 && degree(x) == 2) continue;
+      for (int k = first[size_t(x)]; k < first[size_t(x) + 1]; ++k)
+        if (!used[size_t(at_vertex[size_t(k)])]) walk(x, at_vertex[size_t(k)]);
+    }
 }
 
 }  // namespace

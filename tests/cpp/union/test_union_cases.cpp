@@ -129,6 +129,25 @@ TEST(UnionBadInput, MessagesNameTheBody) {
   EXPECT_THROW(compute_union({Body{}}), InvalidInput);
 }
 
+TEST(UnionBadInput, TheFirstBadBodyInOrderIsReported) {
+  // Bodies are checked in parallel: with several bad ones, the message is still the first's.
+  std::vector<Body> bodies;
+  for (int i = 0; i < 40; ++i) bodies.push_back(cube_body(1, 2.0 * i, 0, 0));
+  bodies[7].faces.pop_back();  // open
+  bodies[3].vertices[2][0] = std::numeric_limits<double>::infinity();
+  bodies[29].faces.pop_back();
+  for (int run = 0; run < 5; ++run) {
+    try {
+      compute_union(bodies);
+      FAIL();
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("body 3 has NaN or infinite"), std::string::npos) << e.what();
+    }
+  }
+  bodies[3] = cube_body(1, 6, 0, 0);
+  EXPECT_THROW(compute_union(bodies), TopologyError);
+}
+
 namespace {
 
 struct AABB {
