@@ -350,7 +350,8 @@ void FaceGrid::add(int f) {
     // Still in the same cells (most moves of the sliver step are small): only the box changes.
     const auto& [old_lo, old_hi] = boxes_[f];
     bool same = true;
-    for (int k = 0; k < 3; ++k) same = same && cell_of(old_lo[k], k, level) == a[k] && cell_of(old_hi[k], k, level) == b[k];
+    for (int k = 0; k < 3; ++k)
+      same = same && cell_of(old_lo[k], k, level) == a[k] && cell_of(old_hi[k], k, level) == b[k];
     if (same) {
       boxes_[f] = {lo, hi};
       return;

@@ -24,7 +24,9 @@ constexpr double kNoRatchetBelow = kPi / 180;
 constexpr int kMaxRemovedValence = 12;
 // A slide along a line must raise its star's worst angle by this fraction: smaller gains
 // were mostly line vertices sliding to and fro on CAD creases, pass after pass, each
-// slide making the whole neighbourhood try every move again.
+// slide making the whole neighbourhood try every move again. The price: the 2000-sphere
+// cluster's worst angle is 6.16 deg instead of 7.37 (asking it only of stars in two
+// planes kept 7.37 but cost box.STL a fifth more work than it saves).
 constexpr double kMinSlideGain = 0.1;
 // Faces at a vertex whose normals differ by more than ~30 degrees: it lies on a crease.
 constexpr double kCreaseCos = 0.866;
