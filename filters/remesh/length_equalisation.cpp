@@ -1,6 +1,7 @@
 #include "remesh/length_equalisation.h"
 
 #include "remesh/face_rings.h"
+#include "remesh/star_shape.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
@@ -308,8 +309,7 @@ int relax_edge_lengths(OutputMesh& out, const SurfaceLocator& locator, const Siz
     if (coincident) continue;
     aim /= double(nb.size());
     const int patch = out.face_patch[ring[begin[v]]];
-    double before = 1e9;
-    for (int k = begin[v]; k < begin[v + 1]; ++k) before = std::min(before, min_angle(out.points, out.faces[ring[k]]));
+    const double before = star_min_angle(out.points, out.faces, rings, int(v));
     const Point3 normal = s.face_normal[out.host[v]];
     for (double t : {1.0, 0.5, 0.25}) {
       const Point3 want = old + (aim - old) * t;
@@ -318,14 +318,8 @@ int relax_edge_lengths(OutputMesh& out, const SurfaceLocator& locator, const Siz
       const auto after_fit = misfit(pr.point);
       if (after_fit >= before_fit) continue;
       out.points[v] = pr.point;
-      double after = 1e9;
-      bool folded = false;
-      for (int k = begin[v]; k < begin[v + 1]; ++k) {
-        const auto& f = out.faces[ring[k]];
-        after = std::min(after, min_angle(out.points, f));
-        folded |= unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]) * s.face_normal[pr.face] < 0.5;
-      }
-      if (folded || after < std::min(before, floor)) {
+      if (star_folded(out.points, out.faces, rings, int(v), s.face_normal[pr.face]) ||
+          star_min_angle(out.points, out.faces, rings, int(v)) < std::min(before, floor)) {
         out.points[v] = old;
         continue;
       }

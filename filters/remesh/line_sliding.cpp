@@ -1,6 +1,7 @@
 #include "remesh/line_sliding.h"
 
 #include "remesh/face_rings.h"
+#include "remesh/star_shape.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
@@ -36,14 +37,7 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
   const FaceRings rings(nv, out.faces);
   const std::vector<int>&begin = rings.begin, &ring = rings.item;
 
-  auto ring_min_angle = [&](int v) {
-    double worst = 1e9;
-    for (int k = begin[v]; k < begin[v + 1]; ++k) {
-      const auto& f = out.faces[ring[k]];
-      worst = std::min(worst, min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
-    }
-    return worst;
-  };
+  auto ring_min_angle = [&](int v) { return star_min_angle(out.points, out.faces, rings, v); };
   std::vector<int> moved;
   std::vector<Point3> old_normal;
   for (LinePath& path : paths) {

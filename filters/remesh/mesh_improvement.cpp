@@ -4,6 +4,7 @@
 #include "remesh/face_rings.h"
 #include "remesh/length_equalisation.h"
 #include "remesh/side_faces.h"
+#include "remesh/star_shape.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
@@ -135,14 +136,11 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vecto
     if (pr.face < 0) continue;
     const Point3 old = out.points[v];
     out.points[v] = pr.point;
-    double after = 1e9;
-    bool folded = false;
-    for (int k = begin[v]; k < begin[v + 1]; ++k) {
-      const auto& f = out.faces[ring[k]];
-      after = std::min(after, min_angle(out.points, f));
-      if (unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]) * s.face_normal[pr.face] < 0.5) folded = true;
+    if (star_folded(out.points, out.faces, rings, int(v), s.face_normal[pr.face]) ||
+        star_min_angle(out.points, out.faces, rings, int(v)) <= before + 1e-9) {
+      out.points[v] = old;
+      continue;
     }
-    if (folded || after <= before + 1e-9) { out.points[v] = old; continue; }
     out.host[v] = pr.face;
     ++moves;
   }
