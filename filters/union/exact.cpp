@@ -408,6 +408,16 @@ void QPoint::homogeneous(const int* axes, int count, mpz_class* n, mpz_class& w)
 QPoint crossing_from_integers(mpz_class& oa, mpz_class& ob, const mpz_class* A, const mpz_class* B, int e);
 
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2) {
+  // CAD: an edge along a coordinate axis crosses a plane across that axis where the
+  // edge's two fixed coordinates meet the plane's: the point is three doubles.
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    if (f0[k] == f1[k] && f0[k] == f2[k] && a[i] == b[i] && a[j] == b[j]) {
+      std::array<double, 3> p{a[0], a[1], a[2]};
+      p[k] = f0[k];
+      return make_point(p);
+    }
+  }
   const double* vals[15];
   for (int k = 0; k < 3; ++k) {
     vals[k] = &a[k];
@@ -470,6 +480,20 @@ QPoint crossing_from_integers(mpz_class& oa, mpz_class& ob, const mpz_class* A, 
 }
 
 QPoint segment_line_crossing(const double* a, const double* b, const double* c0, const double* c1, int i, int j) {
+  // CAD: a segment along axis i (or j) in a plane across the third axis k crosses a line
+  // along the other axis where their fixed coordinates meet: the point is three doubles.
+  const int k = 3 - i - j;
+  if (a[k] == b[k]) {
+    std::array<double, 3> p{a[0], a[1], a[2]};
+    if (a[i] == b[i] && c0[j] == c1[j]) {
+      p[j] = c0[j];
+      return make_point(p);
+    }
+    if (a[j] == b[j] && c0[i] == c1[i]) {
+      p[i] = c0[i];
+      return make_point(p);
+    }
+  }
   const double* vals[10] = {&a[0], &a[1], &a[2], &b[0], &b[1], &b[2], &c0[i], &c0[j], &c1[i], &c1[j]};
   thread_local mpz_class z[10];
   thread_local mpz_class ux, uy, oa, ob;

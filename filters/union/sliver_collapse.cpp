@@ -9,6 +9,7 @@
 
 #include "union/exact.h"
 #include "union/face_clearance.h"
+#include "union/same_cover.h"
 
 namespace mr::surface_union {
 
@@ -179,13 +180,11 @@ private:
     new_pos_.push_back(q);
   }
   bool stays_clear();
-  /// The proposed move takes v out of its star and fans the star's faces from a ring
-  /// vertex that stays put: when the star lies exactly in one plane and every old and
-  /// new face turns the same way in it, the fan covers the same polygon (a fan from a
-  /// boundary vertex with all triangles positive sweeps the interior angle once), so
-  /// the surface stays where it was and cannot meet anything new, unless a vertex of
-  /// another sheet sits exactly at v (bodies touching there), which is looked up.
-  bool flat_star_refilled(int v);
+  /// The proposed move leaves the surface covering the same points (same_cover: a flat
+  /// star filled again, a vertex slid along a straight crease of CAD plates), so it
+  /// cannot meet anything new, unless a vertex of another sheet sits exactly where
+  /// vertex `gone` (or `gone2`) was, bodies touching there: that is looked up.
+  bool cover_unchanged(int gone, int gone2 = -1);
   /// Moves x (whose live faces are fx) to `at` if that stays clear of the faces nearby.
   bool move_vertex(int x, const std::vector<int>& fx, const V3& at);
   void live_faces(int v, std::vector<int>& out) const {
@@ -206,6 +205,7 @@ private:
   FaceGrid grid_;  // where the faces are now, for the crossing checks
   std::vector<int> replaced_, near_, scratch_at_v_;
   std::vector<std::array<V3, 2>> scratch_boxes_;
+  std::vector<PlacedFace> scratch_before_, scratch_after_;
   std::vector<std::array<int, 3>> new_ids_;
   std::vector<std::array<V3, 3>> new_pos_;
   std::vector<int> new_mark_;  // per face: stamp of the move that replaces it
@@ -267,33 +267,27 @@ bool Collapser::stays_clear() {
   return true;
 }
 
-bool Collapser::flat_star_refilled(int v) {
+bool Collapser::cover_unchanged(int gone, int gone2) {
   if (replaced_.empty()) return false;
-  const auto& ref = r_.faces[replaced_[0]];
-  const V3 a = P(ref[0]), b = P(ref[1]), c = P(ref[2]);
-  for (int f : replaced_)
-    for (int x : r_.faces[f])
-      if (orient3d(a.data(), b.data(), c.data(), P(x).data()) != 0) return false;
-  const V3 n = cross(sub3(b, a), sub3(c, a));
-  int k = 0;
-  for (int t = 1; t < 3; ++t)
-    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
-  const int i = (k + 1) % 3, j = (k + 2) % 3;
-  auto turn = [&](const V3& p, const V3& q, const V3& r) { return orient2d(p.data(), q.data(), r.data(), i, j); };
-  const int s = turn(a, b, c);
-  if (s == 0) return false;
-  for (int f : replaced_) {
-    const auto& t = r_.faces[f];
-    if (turn(P(t[0]), P(t[1]), P(t[2])) != s) return false;
+  std::vector<PlacedFace>& before = scratch_before_;
+  std::vector<PlacedFace>& after = scratch_after_;
+  before.resize(replaced_.size());
+  for (size_t n = 0; n < replaced_.size(); ++n) {
+    const auto& t = r_.faces[replaced_[n]];
+    before[n] = {t, {P(t[0]), P(t[1]), P(t[2])}};
   }
-  for (const auto& q : new_pos_)
-    if (turn(q[0], q[1], q[2]) != s) return false;
-  const V3 pv = P(v);
-  grid_.near(pv, pv, scratch_at_v_);
-  for (int g : scratch_at_v_)
-    if (alive_[g])
-      for (int y : r_.faces[g])
-        if (y != v && P(y) == pv) return false;
+  after.resize(new_ids_.size());
+  for (size_t n = 0; n < new_ids_.size(); ++n) after[n] = {new_ids_[n], new_pos_[n]};
+  if (!same_cover(before, after)) return false;
+  for (int x : {gone, gone2}) {
+    if (x < 0) continue;
+    const V3 px = P(x);
+    grid_.near(px, px, scratch_at_v_);
+    for (int g : scratch_at_v_)
+      if (alive_[g])
+        for (int y : r_.faces[g])
+          if (y != x && P(y) == px) return false;
+  }
   return true;
 }
 
@@ -435,7 +429,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   if (moved)
     for (int f : fw)
       if (!has_corner(r_.faces[f], v)) propose(f, w, w, target);
-  if (!(!moved && flat_star_refilled(v)) && !stays_clear()) return false;
+  if (!cover_unchanged(v, moved ? w : -1) && !stays_clear()) return false;
   const double budget_before = volume_budget_;
   volume_budget_ -= std::fabs(dv) / 6;
   for (int x : nv) changed_[x] = 1;
@@ -649,7 +643,7 @@ bool Collapser::try_remove_vertex(int v) {
     new_ids_.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});
     new_pos_.push_back({at[t[0]], at[t[1]], at[t[2]]});
   }
-  if (!stays_clear()) return false;
+  if (!cover_unchanged(v) && !stays_clear()) return false;
   // The first k - 2 faces of the star take the new triangles; the last two go.
   for (int x : ring) {
     auto& list = vf_[x];
@@ -819,7 +813,7 @@ bool Collapser::try_relocate(int x) {
 bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
   start_move();
   for (int f : fx) propose(f, x, x, at);
-  if (!stays_clear()) return false;
+  if (!cover_unchanged(x) && !stays_clear()) return false;
   r_.vertices[x] = at;
   for (int f : fx) {
     refile(f);

@@ -5,6 +5,7 @@
 #include "union/face_triangulation.h"
 #include "union/link_triangulation.h"
 #include "union/point_table.h"
+#include "union/same_cover.h"
 
 #include <gtest/gtest.h>
 
@@ -199,6 +200,32 @@ TEST(UnionExact, CrossingsAreExactAndEqualToTheReducedRational) {
   EXPECT_EQ(c.q(0), mpq_class(1, 2));
   EXPECT_EQ(c.q(1), mpq_class(1, 2));
   EXPECT_EQ(c.q(2), mpq_class(5));
+}
+
+TEST(UnionExact, AxisParallelCrossingsAreDoublesEqualToTheRationals) {
+  // An edge along y crosses the plane y = 1/3: the crossing is built from doubles, and
+  // it is the rational point a + t (b - a).
+  const double a[3] = {0.3, 0.1, 0.7}, b[3] = {0.3, 0.9, 0.7};
+  const double c = 1.0 / 3;
+  const double f0[3] = {0, c, 0}, f1[3] = {1, c, 0}, f2[3] = {0, c, 1};
+  const QPoint x = edge_plane_crossing(a, b, f0, f1, f2);
+  EXPECT_TRUE(x.exact_double);
+  const mpq_class t = (mpq_class(c) - mpq_class(a[1])) / (mpq_class(b[1]) - mpq_class(a[1]));
+  const QPoint y = lerp(make_point({a[0], a[1], a[2]}), make_point({b[0], b[1], b[2]}), t);
+  EXPECT_TRUE(same_point(x, y));
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(x.q(k), y.q(k));
+  // In the plane z = 5: a segment along y against a line along x.
+  const double s0[3] = {0.25, 0, 5}, s1[3] = {0.25, 2, 5}, l0[3] = {0, 0.7, 5}, l1[3] = {1, 0.7, 5};
+  const QPoint p = segment_line_crossing(s0, s1, l0, l1, 0, 1);
+  EXPECT_TRUE(p.exact_double);
+  EXPECT_EQ(p.q(0), mpq_class(0.25));
+  EXPECT_EQ(p.q(1), mpq_class(0.7));
+  EXPECT_EQ(p.q(2), mpq_class(5));
+  // A diagonal line: the rational path, the same point as before the shortcut.
+  const double d0[3] = {0, 0.5, 5}, d1[3] = {1, 0.9, 5};
+  const QPoint q = segment_line_crossing(s0, s1, d0, d1, 0, 1);
+  EXPECT_FALSE(q.exact_double);
+  EXPECT_EQ(q.q(1), mpq_class(0.5) + mpq_class(0.25) * (mpq_class(0.9) - mpq_class(0.5)));
 }
 
 TEST(UnionExact, PointsBuiltOnALineAreKnownCollinear) {
@@ -410,5 +437,73 @@ TEST(UnionLinkTriangulation, ReflexCornerIsNeverCut) {
   for (const auto& t : tris) {
     const V3 &a = arrow[t[0]], &b = arrow[t[1]], &c = arrow[t[2]];
     EXPECT_GT((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]), 0);
+  }
+}
+
+namespace {
+
+// A star at vertex 0 on the crease between the planes z = 0 (y >= 0) and y = 0
+// (z >= 0): line neighbours 1 and 2 on the x axis, 3 and 4 in z = 0, 5 and 6 in y = 0.
+std::vector<V3> crease_points() {
+  return {{0, 0, 0}, {-2, 0, 0}, {2, 0, 0}, {-1, 2, 0}, {1, 2, 0}, {1, 0, 2}, {-1, 0, 2}};
+}
+
+std::vector<PlacedFace> placed(const std::vector<std::array<int, 3>>& faces, const std::vector<V3>& at) {
+  std::vector<PlacedFace> out;
+  for (const auto& t : faces) out.push_back({t, {at[t[0]], at[t[1]], at[t[2]]}});
+  return out;
+}
+
+const std::vector<std::array<int, 3>> kCreaseStar = {{0, 2, 4}, {0, 4, 3}, {0, 3, 1}, {0, 1, 6}, {0, 6, 5}, {0, 5, 2}};
+
+}  // namespace
+
+TEST(UnionSameCover, FlatStarFilledAgainCoversTheSame) {
+  // A hexagon around vertex 0 in the tilted plane x + y + z = 1 (not across an axis),
+  // its centre collapsed onto ring vertex 1.
+  std::vector<V3> at = {{0, 0, 1}};
+  const double ring[6][2] = {{2, 0}, {1, 2}, {-1, 2}, {-2, 0}, {-1, -2}, {1, -2}};
+  for (const auto& r : ring) at.push_back({r[0], r[1], 1 - r[0] - r[1]});
+  std::vector<std::array<int, 3>> fan, refilled;
+  for (int i = 1; i <= 6; ++i) fan.push_back({0, i, i % 6 + 1});
+  for (int i = 2; i <= 5; ++i) refilled.push_back({1, i, i + 1});
+  EXPECT_TRUE(same_cover(placed(fan, at), placed(refilled, at)));
+  // One new face turned over: not the same.
+  refilled[1] = {1, 4, 3};
+  EXPECT_FALSE(same_cover(placed(fan, at), placed(refilled, at)));
+  // A face left out: a hole.
+  refilled = {{1, 2, 3}, {1, 3, 4}, {1, 4, 5}};
+  EXPECT_FALSE(same_cover(placed(fan, at), placed(refilled, at)));
+}
+
+TEST(UnionSameCover, VertexSlidAlongAStraightCreaseCoversTheSame) {
+  const std::vector<V3> at = crease_points();
+  const auto before = placed(kCreaseStar, at);
+  auto moved = [&](const V3& p) {
+    std::vector<V3> q = at;
+    q[0] = p;
+    return placed(kCreaseStar, q);
+  };
+  EXPECT_TRUE(same_cover(before, moved({0.5, 0, 0})));
+  EXPECT_TRUE(same_cover(before, moved({-1.75, 0, 0})));
+  EXPECT_FALSE(same_cover(before, moved({2.5, 0, 0})));     // past neighbour 2: faces turn over
+  EXPECT_FALSE(same_cover(before, moved({0.5, 0, 1e-9})));  // off the plane z = 0
+  EXPECT_FALSE(same_cover(before, moved({0.5, 1e-9, 0})));  // off the plane y = 0
+}
+
+TEST(UnionSameCover, CreaseVertexCollapsedOrRemovedAlongItsLineCoversTheSame) {
+  const std::vector<V3> at = crease_points();
+  const auto before = placed(kCreaseStar, at);
+  // 0 onto its line neighbour 2: faces (0, 2, 4) and (0, 5, 2) go.
+  EXPECT_TRUE(same_cover(before, placed({{2, 4, 3}, {2, 3, 1}, {2, 1, 6}, {2, 6, 5}}, at)));
+  // 0 onto 4, off the crease: the faces in y = 0 fold into z = 0's side.
+  EXPECT_FALSE(same_cover(before, placed({{4, 3, 1}, {4, 1, 6}, {4, 6, 5}, {4, 5, 2}}, at)));
+  // 0 removed, its link filled with the line joined straight from 1 to 2.
+  EXPECT_TRUE(same_cover(before, placed({{1, 2, 4}, {1, 4, 3}, {1, 6, 5}, {1, 5, 2}}, at)));
+  // An open fan in z = 0 (vertex 0 on the border of what is shown) filled by one face:
+  // the same only when 0 lies on the straight side from 3 to 1.
+  for (double y0 : {0.0, 0.5}) {
+    const std::vector<V3> fan_at = {{0, y0, 0}, {-2, 0, 0}, {0, 2, 0}, {2, 0, 0}};
+    EXPECT_EQ(same_cover(placed({{0, 1, 2}, {0, 2, 3}}, fan_at), placed({{1, 2, 3}}, fan_at)), y0 == 0);
   }
 }
