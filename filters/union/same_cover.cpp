@@ -23,9 +23,8 @@ constexpr int kMaxPlanes = 4;  // a star at a CAD corner has three
 
 /// Faces lying exactly in one plane, with the directed sides of the old and the new ones.
 struct Plane {
-  int axis = -1;     // the plane is x[axis] = value (CAD), or -1: through ref
+  int axis = -1;     // the plane is x[axis] = value (CAD), or -1: the one plane of all faces
   double value = 0;
-  V3 ref[3];
   int i = 0, j = 1;  // a projection in which the plane maps one to one
   int sign = 0;      // how every face turns in that projection
   std::vector<Edge> sides[2];  // of the old faces, of the new ones
@@ -39,26 +38,21 @@ int axis_plane(const PlacedFace& f) {
 }
 
 /// The plane of face f among `planes`, added if new; nullptr when there are too many
-/// or the face is degenerate or turns against the others of its plane.
-Plane* plane_of(const PlacedFace& f, std::vector<Plane>& planes) {
-  const int k = axis_plane(f);
+/// or the face is degenerate or turns against the others of its plane. With `general`
+/// every face is taken to lie in the one plane of the first (checked by the caller).
+Plane* plane_of(const PlacedFace& f, bool general, std::vector<Plane>& planes) {
+  const int k = general ? -1 : axis_plane(f);
   Plane* found = nullptr;
-  for (Plane& p : planes) {
-    const bool same = k >= 0 ? p.axis == k && p.value == f.at[0][k]
-                             : p.axis < 0 && orient3d(p.ref[0].data(), p.ref[1].data(), p.ref[2].data(), f.at[0].data()) == 0 &&
-                                   orient3d(p.ref[0].data(), p.ref[1].data(), p.ref[2].data(), f.at[1].data()) == 0 &&
-                                   orient3d(p.ref[0].data(), p.ref[1].data(), p.ref[2].data(), f.at[2].data()) == 0;
-    if (same) {
+  for (Plane& p : planes)
+    if (general || (p.axis == k && p.value == f.at[0][k])) {
       found = &p;
       break;
     }
-  }
   if (!found) {
     if (int(planes.size()) == kMaxPlanes) return nullptr;
     Plane p;
     p.axis = k;
     p.value = k >= 0 ? f.at[0][k] : 0;
-    for (int z = 0; z < 3; ++z) p.ref[z] = f.at[z];
     int n_axis = k;
     if (k < 0) {  // the largest component of the normal
       const V3 u{f.at[1][0] - f.at[0][0], f.at[1][1] - f.at[0][1], f.at[1][2] - f.at[0][2]};
@@ -77,6 +71,15 @@ Plane* plane_of(const PlacedFace& f, std::vector<Plane>& planes) {
   if (s == 0 || (found->sign != 0 && s != found->sign)) return nullptr;
   found->sign = s;
   return found;
+}
+
+/// Every corner of every face lies exactly in the plane of `ref`. Stops at the first
+/// that does not (curved stars, where the filter tells at once).
+bool all_in_plane(const PlacedFace& ref, const std::vector<PlacedFace>& faces) {
+  for (const PlacedFace& f : faces)
+    for (const V3& p : f.at)
+      if (orient3d(ref.at[0].data(), ref.at[1].data(), ref.at[2].data(), p.data()) != 0) return false;
+  return true;
 }
 
 /// Removes the pairs of opposite sides (inside the faces' union) from `sides`.
@@ -138,11 +141,22 @@ bool straight_run(const std::vector<Corner>& path, const Plane& p) {
 }  // namespace
 
 bool same_cover(const std::vector<PlacedFace>& before, const std::vector<PlacedFace>& after) {
+  if (before.empty()) return false;
+  // Faces across coordinate axes (CAD plates) fall into up to four planes; otherwise all
+  // must lie in one plane (a flat star elsewhere).
+  bool general = false;
+  for (int side = 0; side < 2 && !general; ++side)
+    for (const PlacedFace& f : side == 0 ? before : after)
+      if (axis_plane(f) < 0) {
+        general = true;
+        break;
+      }
+  if (general && !(all_in_plane(before[0], before) && all_in_plane(before[0], after))) return false;
   std::vector<Plane> planes;
   planes.reserve(kMaxPlanes);
   for (int side = 0; side < 2; ++side)
     for (const PlacedFace& f : side == 0 ? before : after) {
-      Plane* p = plane_of(f, planes);
+      Plane* p = plane_of(f, general, planes);
       if (!p) return false;
       for (int z = 0; z < 3; ++z)
         p->sides[side].push_back({{f.id[z], f.at[z]}, {f.id[(z + 1) % 3], f.at[(z + 1) % 3]}});

@@ -18,8 +18,8 @@ struct PlacedFace {
 };
 
 /// The faces `after` cover exactly the points the faces `before` cover. Decided
-/// exactly, and only in the simple cases: the faces fall into a few planes (exactly),
-/// and in each plane all of them turn the same way and the boundary of the old faces
+/// exactly, and only in the simple cases: the faces fall into a few planes across
+/// coordinate axes (CAD), or all lie in one plane, and in each plane all of them turn the same way and the boundary of the old faces
 /// equals the boundary of the new ones, but for corners on a straight run of it (a
 /// vertex moved or removed along a line). Then, plane by plane, the new triangles
 /// cover each point as often as the old ones (the winding number of the common

@@ -268,7 +268,17 @@ bool Collapser::stays_clear() {
 }
 
 bool Collapser::cover_unchanged(int gone, int gone2) {
-  if (replaced_.empty()) return false;
+  if (replaced_.empty() || new_ids_.empty()) return false;
+  {  // Curved stars leave here: a new face off the plane of the first old one, which is
+     // not across a coordinate axis (same_cover would find that out at more cost).
+    const auto& t = r_.faces[replaced_[0]];
+    const V3 a = P(t[0]), b = P(t[1]), c = P(t[2]);
+    bool axis = false;
+    for (int k = 0; k < 3; ++k) axis |= a[k] == b[k] && a[k] == c[k];
+    if (!axis)
+      for (const V3& q : new_pos_[0])
+        if (orient3d(a.data(), b.data(), c.data(), q.data()) != 0) return false;
+  }
   std::vector<PlacedFace>& before = scratch_before_;
   std::vector<PlacedFace>& after = scratch_after_;
   before.resize(replaced_.size());
