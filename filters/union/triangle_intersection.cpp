@@ -263,13 +263,24 @@ bool PairIntersector::coplanar(int f, int g, CutFaces& cf) {
       if (std::fabs(b[k] - a[k]) > std::fabs(b[axis] - a[axis])) axis = k;
     const int dir = b[axis] > a[axis] ? 1 : -1;
     int enter = -1, leave = -1;  // point ids of the clip points
+    int side_a[3], side_b[3];
     for (int e = 0; e < 3; ++e) {
       const double* c0 = vp(C[e]);
       const double* c1 = vp(C[(e + 1) % 3]);
-      const int sa = sc * orient2d(c0, c1, a, pr.i, pr.j);
-      const int sb = sc * orient2d(c0, c1, b, pr.i, pr.j);
-      if (sa < 0 && sb < 0) return false;
+      side_a[e] = sc * orient2d(c0, c1, a, pr.i, pr.j);
+      side_b[e] = sc * orient2d(c0, c1, b, pr.i, pr.j);
+      if (side_a[e] < 0 && side_b[e] < 0) return false;
+    }
+    // Where the segment's line crosses an edge's line beyond the edge, the crossing lies
+    // outside the triangle and can be neither end of a clip that is not empty (the
+    // last entry and the first exit lie on the triangle's sides): not built. Most of
+    // the crossings of coplanar CAD faces were such points, each built with integers.
+    int corner_side[3];
+    for (int e = 0; e < 3; ++e) corner_side[e] = orient2d(a, b, vp(C[e]), pr.i, pr.j);
+    for (int e = 0; e < 3; ++e) {
+      const int sa = side_a[e], sb = side_b[e];
       if (sa >= 0 && sb >= 0) continue;
+      if (corner_side[e] * corner_side[(e + 1) % 3] > 0) continue;
       const int x = edge_edge_point(va, vb, C[e], C[(e + 1) % 3], pr);
       if (sa < 0) {  // entering: the last entry counts
         if (enter < 0 || dir * compare(points_[x], points_[enter], axis) > 0) enter = x;
@@ -277,6 +288,10 @@ bool PairIntersector::coplanar(int f, int g, CutFaces& cf) {
         leave = x;
       }
     }
+    // An end outside the triangle with no crossing on a side: the segment misses it.
+    const bool a_inside = side_a[0] >= 0 && side_a[1] >= 0 && side_a[2] >= 0;
+    const bool b_inside = side_b[0] >= 0 && side_b[1] >= 0 && side_b[2] >= 0;
+    if ((!a_inside && enter < 0) || (!b_inside && leave < 0)) return false;
     if (enter >= 0 && leave >= 0 && dir * compare(points_[enter], points_[leave], axis) > 0) return false;
     const int p = enter >= 0 ? enter : vertex_point_[va];
     const int q = leave >= 0 ? leave : vertex_point_[vb];
