@@ -112,6 +112,8 @@ void homogeneous_orient2d(mpz_class& out, mpz_class& t, Homogeneous2 u, Homogene
 /// Sign of orient2d on rational points from their integers (QPoint::homogeneous): the
 /// rationals' products and sums would each take a gcd.
 int orient2d_homogeneous_sign(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
+/// The same for orient3d: the 4x4 determinant of the points' integers (x, y, z, w).
+int orient3d_homogeneous_sign(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d);
 
 }  // namespace
 
@@ -147,15 +149,7 @@ int orient3d(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d)
   const double bound = 2 * (18 * err * M * M + 18 * err * err * M + 6 * err * err * err + 7.8e-16 * 6 * M * M * M);
   if (det > bound) return 1;
   if (det < -bound) return -1;
-  mpq_class q[3][3];
-  for (int k = 0; k < 3; ++k) {
-    q[0][k] = b.q(k) - a.q(k);
-    q[1][k] = c.q(k) - a.q(k);
-    q[2][k] = d.q(k) - a.q(k);
-  }
-  const mpq_class e = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
-                      q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
-  return sgn(e);
+  return orient3d_homogeneous_sign(a, b, c, d);
 }
 
 int perpendicular_dot_sign(const QPoint& u, const QPoint& w, const QPoint& x, const QPoint& y) {
@@ -370,6 +364,33 @@ int orient2d_homogeneous_sign(const QPoint& a, const QPoint& b, const QPoint& c,
   c.homogeneous(axes, 2, n[2], w[2]);
   homogeneous_orient2d(det, t, {n[0][0], n[0][1], w[0]}, {n[1][0], n[1][1], w[1]}, {n[2][0], n[2][1], w[2]});
   return sgn(det);  // every w is positive
+}
+
+int orient3d_homogeneous_sign(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d) {
+  thread_local mpz_class n[4][4], s[6], r[6], det;  // reused across calls (saves allocations)
+  const int xyz[3] = {0, 1, 2};
+  const QPoint* p[4] = {&a, &b, &c, &d};
+  for (int m = 0; m < 4; ++m) p[m]->homogeneous(xyz, 3, n[m], n[m][3]);
+  // Laplace along the first two rows: their 2x2 minors times the complementary minors
+  // of the last two, columns (x, y, z, w) paired as (01, 02, 03, 12, 13, 23).
+  const int pairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  for (int q = 0; q < 6; ++q) {
+    const int u = pairs[q][0], v = pairs[q][1];
+    mpz_mul(s[q].get_mpz_t(), n[0][u].get_mpz_t(), n[1][v].get_mpz_t());
+    mpz_submul(s[q].get_mpz_t(), n[0][v].get_mpz_t(), n[1][u].get_mpz_t());
+    mpz_mul(r[q].get_mpz_t(), n[2][u].get_mpz_t(), n[3][v].get_mpz_t());
+    mpz_submul(r[q].get_mpz_t(), n[2][v].get_mpz_t(), n[3][u].get_mpz_t());
+  }
+  // det = s01 r23 - s02 r13 + s03 r12 + s12 r03 - s13 r02 + s23 r01.
+  mpz_mul(det.get_mpz_t(), s[0].get_mpz_t(), r[5].get_mpz_t());
+  mpz_submul(det.get_mpz_t(), s[1].get_mpz_t(), r[4].get_mpz_t());
+  mpz_addmul(det.get_mpz_t(), s[2].get_mpz_t(), r[3].get_mpz_t());
+  mpz_addmul(det.get_mpz_t(), s[3].get_mpz_t(), r[2].get_mpz_t());
+  mpz_submul(det.get_mpz_t(), s[4].get_mpz_t(), r[1].get_mpz_t());
+  mpz_addmul(det.get_mpz_t(), s[5].get_mpz_t(), r[0].get_mpz_t());
+  // With every w positive, det = -w_a w_b w_c w_d orient3d (subtract the first row from
+  // the others, expand along the w column).
+  return -sgn(det);
 }
 
 }  // namespace

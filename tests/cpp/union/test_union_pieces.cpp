@@ -114,6 +114,47 @@ TEST(UnionExact, Orient2dOnUnreducedRationalsAgreesWithRationalArithmetic) {
   }
 }
 
+TEST(UnionExact, Orient3dOnUnreducedRationalsAgreesWithRationalArithmetic) {
+  // Crossings of edges with plane F, and with F' whose corner is one ulp off: most
+  // quadruples are exactly coplanar or off by ~1e-17, where the filter cannot decide.
+  const double f0[3] = {0.1, 0.2, 0.3}, f1[3] = {0.9, 0.1, 0.4}, f2[3] = {0.2, 0.8, 0.6};
+  const double f2_off[3] = {0.2, 0.8, std::nextafter(0.6, 1.0)};
+  std::vector<QPoint> pts;
+  for (const double* corner : {f2, f2_off})
+    for (int k = 0; k < 6; ++k) {
+      const double a[3] = {0.15 + 0.1 * k, 0.2 + 0.05 * k, -1}, b[3] = {0.3 + 0.07 * k, 0.25 - 0.03 * k, 2};
+      pts.push_back(edge_plane_crossing(a, b, f0, f1, corner));
+    }
+  pts.push_back(make_point({f0[0], f0[1], f0[2]}));
+  const int n = int(pts.size());
+  auto exact_sign = [&](int a, int b, int c, int d) {
+    mpq_class m[3][3];
+    for (int k = 0; k < 3; ++k) {
+      m[0][k] = pts[b].q(k) - pts[a].q(k);
+      m[1][k] = pts[c].q(k) - pts[a].q(k);
+      m[2][k] = pts[d].q(k) - pts[a].q(k);
+    }
+    return sgn(mpq_class(m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                         m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])));
+  };
+  // The predicate first (on the unreduced forms: the reference puts them in canonical form).
+  std::vector<std::array<int, 5>> got;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c)
+        for (int d = 0; d < n; ++d)
+          if (d != a && d != b && d != c) got.push_back({a, b, c, d, orient3d(pts[a], pts[b], pts[c], pts[d])});
+  int zero = 0, nonzero = 0;
+  for (const auto& g : got) {
+    const int expected = exact_sign(g[0], g[1], g[2], g[3]);
+    ++(expected == 0 ? zero : nonzero);
+    EXPECT_EQ(g[4], expected) << g[0] << " " << g[1] << " " << g[2] << " " << g[3];
+  }
+  EXPECT_GT(zero, 100);
+  EXPECT_GT(nonzero, 100);
+}
+
 TEST(UnionExact, RationalCrossingEqualsTheInterpolatedPoint) {
   // Segment (a, b) between two unreduced points, crossing line (c, d) of unreduced
   // points: the integer construction gives the rational a + t (b - a), t = oa / (oa - ob).
