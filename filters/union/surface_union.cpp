@@ -30,14 +30,22 @@ int find(std::vector<int>& uf, int x) {
   return x;
 }
 
-/// Strictly inside soup face g (coplanar with the projection's face), exactly.
-bool strictly_inside(const PointTable& pts, const std::vector<int>& vertex_point, const Soup& soup, int g,
-                     const QPoint& c, const Projection& pr) {
+/// Sub-face `sub` of a face cut along coplanar soup face g lies inside g, exactly. The
+/// cut follows g's sides, so the sub-face lies inside or outside g as a whole: inside
+/// exactly when no corner is strictly outside (no rational centroid needed; corners
+/// built on a side of g are known to lie on it).
+bool inside_coplanar(const PointTable& pts, const std::vector<int>& vertex_point, const Soup& soup, int g,
+                     const std::array<int, 3>& sub, const Projection& pr) {
   const auto& G = soup.face[g];
-  const QPoint* q[3] = {&pts[vertex_point[G[0]]], &pts[vertex_point[G[1]]], &pts[vertex_point[G[2]]]};
-  const int so = orient2d(*q[0], *q[1], *q[2], pr.i, pr.j);
-  for (int e = 0; e < 3; ++e)
-    if (so * orient2d(*q[e], *q[(e + 1) % 3], c, pr.i, pr.j) <= 0) return false;
+  const int q[3] = {vertex_point[G[0]], vertex_point[G[1]], vertex_point[G[2]]};
+  const int so = orient2d(pts[q[0]], pts[q[1]], pts[q[2]], pr.i, pr.j);
+  for (int e = 0; e < 3; ++e) {
+    const int u = q[e], w = q[(e + 1) % 3];
+    for (int x : sub) {
+      if (x == u || x == w || pts.known_collinear(u, w, x)) continue;
+      if (so * orient2d(pts[u], pts[w], pts[x], pr.i, pr.j) < 0) return false;
+    }
+  }
   return true;
 }
 
@@ -189,11 +197,8 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
       int copy_body = -1;
       if (it && !it->coplanar.empty()) {
         const Projection pr = face_projection(pts[corners[0]], pts[corners[1]], pts[corners[2]]);
-        const QPoint &a = pts[sub[s][0]], &b = pts[sub[s][1]], &c = pts[sub[s][2]];
-        const QPoint centroid = make_point((a.q(0) + b.q(0) + c.q(0)) / 3, (a.q(1) + b.q(1) + c.q(1)) / 3,
-                                           (a.q(2) + b.q(2) + c.q(2)) / 3);
         for (int g : it->coplanar) {
-          if (!strictly_inside(pts, vertex_point, soup, g, centroid, pr)) continue;
+          if (!inside_coplanar(pts, vertex_point, soup, g, sub[s], pr)) continue;
           const auto& G = soup.face[g];
           const bool same = orient2d(pts[vertex_point[G[0]]], pts[vertex_point[G[1]]], pts[vertex_point[G[2]]], pr.i,
                                      pr.j) > 0;
