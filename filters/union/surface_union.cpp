@@ -42,8 +42,10 @@ bool inside_coplanar(const PointTable& pts, const std::vector<int>& vertex_point
   for (int e = 0; e < 3; ++e) {
     const int u = q[e], w = q[(e + 1) % 3];
     for (int x : sub) {
-      if (x == u || x == w || pts.known_collinear(u, w, x)) continue;
-      if (so * orient2d(pts[u], pts[w], pts[x], pr.i, pr.j) < 0) return false;
+      if (x == u || x == w) continue;
+      int side = orient2d_filter(pts[u], pts[w], pts[x], pr.i, pr.j);
+      if (side == 2) side = pts.known_collinear(u, w, x) ? 0 : orient2d(pts[u], pts[w], pts[x], pr.i, pr.j);
+      if (so * side < 0) return false;
     }
   }
   return true;
