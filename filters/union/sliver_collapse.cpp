@@ -89,6 +89,23 @@ private:
   void refile(int f) {
     grid_.add(f);
     angle_[f] = -1;
+    touched(f);
+  }
+  /// Face f changed or is going: its corners' neighbourhoods are not what they were.
+  void touched(int f) {
+    ++clock_;
+    for (int y : r_.faces[f]) changed_at_[y] = clock_;
+  }
+  /// Vertex v's removal was refused (before the crossing check) since the last change
+  /// at v and at its ring: it would be refused again, and its link triangulation is
+  /// the expensive part. The budget only shrinks within a round; run() forgets the
+  /// refusals between rounds.
+  bool removal_still_refused(int v, const std::vector<int>& ring) const {
+    const long at = removal_refused_at_[v];
+    if (at < 0 || changed_at_[v] > at) return false;
+    for (int x : ring)
+      if (changed_at_[x] > at) return false;
+    return true;
   }
   /// Face f with its corner x at `moved` (into q); false if it would degenerate or turn over.
   bool moved_face(int f, int x, const V3& moved, V3 q[3]) const {
@@ -217,6 +234,9 @@ private:
   std::vector<std::array<V3, 2>> scratch_boxes_;
   std::vector<PlacedFace> scratch_before_, scratch_after_;
   std::vector<int> scratch_compensators_;
+  long clock_ = 0;                        // counts face changes
+  std::vector<long> changed_at_;          // per vertex: clock of the last change at it
+  std::vector<long> removal_refused_at_;  // per vertex: clock of its refused removal, or -1
   std::vector<std::array<int, 3>> new_ids_;
   std::vector<std::array<V3, 3>> new_pos_;
   std::vector<int> new_mark_;  // per face: stamp of the move that replaces it
@@ -466,6 +486,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   for (int f : fv) {
     auto& t = r_.faces[f];
     if (has_corner(t, w)) {
+      touched(f);
       alive_[f] = 0;
       grid_.remove(f);
       continue;
@@ -652,6 +673,11 @@ bool Collapser::try_remove_vertex(int v) {
       if (line_.count(ekey(v, ring[i]))) forced[n++] = i;
     if (n != 2 || line_.count(ekey(ring[forced[0]], ring[forced[1]]))) return false;
   }
+  if (removal_still_refused(v, ring)) return false;
+  auto refuse = [&] {
+    removal_refused_at_[v] = clock_;
+    return false;
+  };
   V3 up{0, 0, 0};
   for (int f : fv) {
     const auto& t = r_.faces[f];
@@ -670,8 +696,8 @@ bool Collapser::try_remove_vertex(int v) {
   double after = 0;
   if (!best_polygon_triangulation(
           at, up, [&](int i, int j) { return !edge_exists(ring[i], ring[j]); }, forced, tris, after, before))
-    return false;
-  if (!any_cut && after < threshold_) return false;
+    return refuse();
+  if (!any_cut && after < threshold_) return refuse();
   // Each new face faces the way of the star and passes within the deviation bound of v.
   const V3 pv = P(v);
   double dv6 = 0;  // six times the volume change (the old faces span nothing seen from v)
@@ -679,11 +705,11 @@ bool Collapser::try_remove_vertex(int v) {
     const V3 a = sub3(at[t[0]], pv), b = sub3(at[t[1]], pv), c = sub3(at[t[2]], pv);
     const V3 n = cross(sub3(b, a), sub3(c, a));
     const double ln = norm(n);
-    if (!(ln > 0) || dot(n, up) <= 0.1 * ln * norm(up)) return false;
-    if (std::fabs(dot(a, n)) / ln > max_dev_) return false;
+    if (!(ln > 0) || dot(n, up) <= 0.1 * ln * norm(up)) return refuse();
+    if (std::fabs(dot(a, n)) / ln > max_dev_) return refuse();
     dv6 += det(a, b, c);
   }
-  if (std::fabs(dv6) / 6 > volume_budget_) return false;
+  if (std::fabs(dv6) / 6 > volume_budget_) return refuse();
   start_move();
   replaced_ = fv;
   for (const auto& t : tris) {
@@ -707,6 +733,7 @@ bool Collapser::try_remove_vertex(int v) {
       for (int x : r_.faces[f]) vf_[x].push_back(f);
       refile(f);
     } else {
+      touched(f);
       alive_[f] = 0;
       grid_.remove(f);
     }
@@ -908,7 +935,9 @@ int Collapser::run(double threshold) {
   // the budget is not spent on the worst slivers while cheaper fixes exist; then the rest.
   const double budget = volume_budget_;
   const double rounding = std::min(budget, 1e-12 * budget_scale_);
+  changed_at_.assign(r_.vertices.size(), 0);
   for (int round = 0; round < 2; ++round) {
+    removal_refused_at_.assign(r_.vertices.size(), -1);
     if (round == 0) volume_budget_ = rounding;
     else volume_budget_ = budget - (rounding - volume_budget_);
     run_passes(threshold);
