@@ -786,7 +786,8 @@ bool Collapser::try_slide_on_line(int x) {
         V3 q[3];
         if (!moved_face(f, x, at, q)) { fine = false; break; }
         const double a = smallest_angle(q[0], q[1], q[2]);
-        if (!cut_[f] && a < threshold_ && a < min_angle(f)) { fine = false; break; }
+        // A face no better than the best place so far: this place cannot win.
+        if ((!cut_[f] && a < threshold_ && a < min_angle(f)) || !(a > best)) { fine = false; break; }
         worst = std::min(worst, a);
       }
       if (fine && worst > best) { best = worst; best_at = at; }
