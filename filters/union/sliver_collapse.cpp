@@ -128,6 +128,33 @@ private:
           for (int y : r_.faces[h])
             if (y != u && y != v && y != c && y != d) out.push_back(y);
   }
+  /// Where the flip of (u, v) in faces f = (u, v, c) and g = (v, u, d) changes the star
+  /// lists, so that unflip() restores them exactly.
+  struct FlipUndo {
+    long at_u, at_v;
+  };
+  /// Faces f and g become (u, d, c) and (d, v, c), with the star lists to match.
+  FlipUndo flip(int f, int g, int u, int v, int c, int d) {
+    const FlipUndo undo{std::find(vf_[u].begin(), vf_[u].end(), g) - vf_[u].begin(),
+                        std::find(vf_[v].begin(), vf_[v].end(), f) - vf_[v].begin()};
+    r_.faces[f] = {u, d, c};
+    r_.faces[g] = {d, v, c};
+    angle_[f] = angle_[g] = -1;
+    vf_[u].erase(vf_[u].begin() + undo.at_u);
+    vf_[v].erase(vf_[v].begin() + undo.at_v);
+    vf_[c].push_back(g);
+    vf_[d].push_back(f);
+    return undo;
+  }
+  void unflip(int f, int g, int u, int v, int c, int d, const FlipUndo& undo) {
+    r_.faces[f] = {u, v, c};
+    r_.faces[g] = {v, u, d};
+    angle_[f] = angle_[g] = -1;
+    vf_[c].pop_back();
+    vf_[d].pop_back();
+    vf_[u].insert(vf_[u].begin() + undo.at_u, g);
+    vf_[v].insert(vf_[v].begin() + undo.at_v, f);
+  }
   /// Moves free vertex x (no line) along the volume gradient of its star so
   /// that the enclosed volume changes by -dv6 / 6, when no face flips or becomes (more
   /// of) a sliver and the move stays within the deviation bound.
@@ -558,29 +585,13 @@ bool Collapser::try_flip(int f, int z) {
   // of box.STL's 1055 flips were checked, applied and undone for want of one.
   size_t first_compensator = 0;
   if (dv6 != 0 && std::fabs(dv6) / 6 > volume_budget_) {
-    // The flip's faces for the plan; undone below, each star list as it was.
-    const auto at_u = std::find(vf_[u].begin(), vf_[u].end(), g) - vf_[u].begin();
-    const auto at_v = std::find(vf_[v].begin(), vf_[v].end(), f) - vf_[v].begin();
-    if (at_u == long(vf_[u].size()) || at_v == long(vf_[v].size())) return false;
-    r_.faces[f] = {u, d, c};
-    r_.faces[g] = {d, v, c};
-    angle_[f] = angle_[g] = -1;
-    vf_[u].erase(vf_[u].begin() + at_u);
-    vf_[v].erase(vf_[v].begin() + at_v);
-    vf_[c].push_back(g);
-    vf_[d].push_back(f);
+    const FlipUndo undo = flip(f, g, u, v, c, d);
     flip_compensators(u, v, c, d, scratch_compensators_);
     V3 at;
     while (first_compensator < scratch_compensators_.size() &&
            !plan_compensation(scratch_compensators_[first_compensator], dv6, at))
       ++first_compensator;
-    r_.faces[f] = {u, v, c};
-    r_.faces[g] = {v, u, d};
-    angle_[f] = angle_[g] = -1;
-    vf_[c].pop_back();
-    vf_[d].pop_back();
-    vf_[u].insert(vf_[u].begin() + at_u, g);
-    vf_[v].insert(vf_[v].begin() + at_v, f);
+    unflip(f, g, u, v, c, d, undo);
     if (first_compensator == scratch_compensators_.size()) return false;
   }
   start_move();
@@ -589,13 +600,7 @@ bool Collapser::try_flip(int f, int z) {
   new_pos_ = {{P(u), P(d), P(c)}, {P(d), P(v), P(c)}};
   // A flat convex quad (CAD plates) covers the same place after the flip: nothing to check.
   if (!flat_convex_quad(P(u), P(v), P(c), P(d)) && !stays_clear()) return false;
-  r_.faces[f] = {u, d, c};
-  r_.faces[g] = {d, v, c};
-  angle_[f] = angle_[g] = -1;
-  vf_[u].erase(std::remove(vf_[u].begin(), vf_[u].end(), g), vf_[u].end());
-  vf_[v].erase(std::remove(vf_[v].begin(), vf_[v].end(), f), vf_[v].end());
-  vf_[c].push_back(g);
-  vf_[d].push_back(f);
+  const FlipUndo undo = flip(f, g, u, v, c, d);
   // Give the volume back by a small move of one free vertex (from the first the plan
   // found: those before it cannot); else it is paid from the budget.
   bool compensated = dv6 == 0;
@@ -605,14 +610,8 @@ bool Collapser::try_flip(int f, int z) {
       compensated = compensate(scratch_compensators_[n], dv6);
   }
   if (!compensated) {
-    if (std::fabs(dv6) / 6 > volume_budget_) {  // undo
-      vf_[c].pop_back();
-      vf_[d].pop_back();
-      vf_[u].push_back(g);
-      vf_[v].push_back(f);
-      r_.faces[f] = {u, v, c};
-      r_.faces[g] = {v, u, d};
-      angle_[f] = angle_[g] = -1;
+    if (std::fabs(dv6) / 6 > volume_budget_) {
+      unflip(f, g, u, v, c, d, undo);
       return false;
     }
     volume_budget_ -= std::fabs(dv6) / 6;
