@@ -49,15 +49,15 @@ bool validate_body(Body& b, size_t i) {
     }
   std::sort(half.begin(), half.end());
   int open = 0, nonmanifold = 0, misoriented = 0;
-  for (size_t i = 0; i < half.size();) {
-    size_t j = i;
+  for (size_t run = 0; run < half.size();) {
+    size_t end = run;
     int forward = 0;
-    while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) forward += half[j++][2];
-    const size_t n = j - i;
+    while (end < half.size() && half[end][0] == half[run][0] && half[end][1] == half[run][1]) forward += half[end++][2];
+    const size_t n = end - run;
     if (n == 1) ++open;
     else if (n > 2) ++nonmanifold;
     else if (forward != 1) ++misoriented;
-    i = j;
+    run = end;
   }
   if (open) throw TopologyError(name + " is not closed (" + std::to_string(open) +
                                 " boundary edges): close its holes first (Remeshing > Close Holes), or weld "

@@ -138,11 +138,13 @@ mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int 
 
 /// The point where segment (a, b) crosses the plane of (f0, f1, f2), exactly; a and b
 /// must lie strictly on opposite sides. Computed with integers (all inputs scaled to
-/// one power of two), so only the final coordinates are reduced.
+/// one power of two), so only the final coordinates are reduced; an edge along an axis
+/// crossing a plane across it gives a point of doubles (exact_double), no integers.
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2);
 
 /// The point where segment (a, b) crosses the line (c0, c1) in the projection on axes
-/// (i, j), exactly; a and b must not both lie on the line. Integers as above.
+/// (i, j), exactly; a and b must not both lie on the line. Integers as above; a segment
+/// and a line along the two axes of a plane across the third give a point of doubles.
 QPoint segment_line_crossing(const double* a, const double* b, const double* c0, const double* c1, int i, int j);
 
 /// The same for rational points: where segment (a, b) crosses line (c, d) in the
