@@ -165,13 +165,6 @@ bool strictly_one_side(const int sides[3], int shared) {
   return pos + shared == 3 || neg + shared == 3;
 }
 
-int largest_normal_axis(const V3 T[3]) {
-  const V3 n = cross(sub3(T[1], T[0]), sub3(T[2], T[0]));
-  int k = 0;
-  for (int t = 1; t < 3; ++t)
-    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
-  return k;
-}
 
 }  // namespace
 
@@ -252,6 +245,14 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
   for (int e = 0; e < 3; ++e)
     if (f_side_meets_g(e, (e + 1) % 3) || g_side_meets_f(e, (e + 1) % 3)) return true;
   return false;
+}
+
+int largest_normal_axis(const V3 T[3]) {
+  const V3 n = cross(sub3(T[1], T[0]), sub3(T[2], T[0]));
+  int k = 0;
+  for (int t = 1; t < 3; ++t)
+    if (std::fabs(n[t]) > std::fabs(n[k])) k = t;
+  return k;
 }
 
 bool flat_convex_quad(const V3& u, const V3& v, const V3& c, const V3& d) {

@@ -20,6 +20,10 @@ using V3 = std::array<double, 3>;
 /// the doubles).
 bool triangles_meet(const std::array<int, 3>& a, const V3 pa[3], const std::array<int, 3>& b, const V3 pb[3]);
 
+/// The axis of the largest component of triangle T's normal: the projection on the other
+/// two maps its plane one to one.
+int largest_normal_axis(const V3 T[3]);
+
 /// Faces (u, v, c) and (v, u, d) form a strictly convex quadrilateral lying exactly in
 /// one plane. Flipping its diagonal to (c, d) then leaves the surface where it was,
 /// so the flip cannot make faces meet that did not. Exact.

@@ -30,18 +30,11 @@ struct Plane {
   std::vector<Edge> sides[2];  // of the old faces, of the new ones
 };
 
-/// The coordinate axis across whose plane face f lies, or -1 (a test of equal doubles).
-int axis_plane(const PlacedFace& f) {
-  for (int k = 0; k < 3; ++k)
-    if (f.at[0][k] == f.at[1][k] && f.at[0][k] == f.at[2][k]) return k;
-  return -1;
-}
-
 /// The plane of face f among `planes`, added if new; nullptr when there are too many
 /// or the face is degenerate or turns against the others of its plane. With `general`
 /// every face is taken to lie in the one plane of the first (checked by the caller).
 Plane* plane_of(const PlacedFace& f, bool general, std::vector<Plane>& planes) {
-  const int k = general ? -1 : axis_plane(f);
+  const int k = general ? -1 : axis_plane(f.at.data());
   Plane* found = nullptr;
   for (Plane& p : planes)
     if (general || (p.axis == k && p.value == f.at[0][k])) {
@@ -53,15 +46,7 @@ Plane* plane_of(const PlacedFace& f, bool general, std::vector<Plane>& planes) {
     Plane p;
     p.axis = k;
     p.value = k >= 0 ? f.at[0][k] : 0;
-    int n_axis = k;
-    if (k < 0) {  // the largest component of the normal
-      const V3 u{f.at[1][0] - f.at[0][0], f.at[1][1] - f.at[0][1], f.at[1][2] - f.at[0][2]};
-      const V3 v{f.at[2][0] - f.at[0][0], f.at[2][1] - f.at[0][1], f.at[2][2] - f.at[0][2]};
-      const V3 n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-      n_axis = 0;
-      for (int t = 1; t < 3; ++t)
-        if (std::fabs(n[t]) > std::fabs(n[n_axis])) n_axis = t;
-    }
+    const int n_axis = k >= 0 ? k : largest_normal_axis(f.at.data());
     p.i = (n_axis + 1) % 3;
     p.j = (n_axis + 2) % 3;
     planes.push_back(std::move(p));
@@ -140,6 +125,12 @@ bool straight_run(const std::vector<Corner>& path, const Plane& p) {
 
 }  // namespace
 
+int axis_plane(const V3 t[3]) {
+  for (int k = 0; k < 3; ++k)
+    if (t[0][k] == t[1][k] && t[0][k] == t[2][k]) return k;
+  return -1;
+}
+
 bool same_cover(const std::vector<PlacedFace>& before, const std::vector<PlacedFace>& after) {
   if (before.empty()) return false;
   // Faces across coordinate axes (CAD plates) fall into up to four planes; otherwise all
@@ -147,7 +138,7 @@ bool same_cover(const std::vector<PlacedFace>& before, const std::vector<PlacedF
   bool general = false;
   for (int side = 0; side < 2 && !general; ++side)
     for (const PlacedFace& f : side == 0 ? before : after)
-      if (axis_plane(f) < 0) {
+      if (axis_plane(f.at.data()) < 0) {
         general = true;
         break;
       }

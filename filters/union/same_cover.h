@@ -17,6 +17,10 @@ struct PlacedFace {
   std::array<V3, 3> at;
 };
 
+/// The coordinate axis across whose plane triangle t lies (CAD plates), or -1: a test of
+/// equal doubles.
+int axis_plane(const V3 t[3]);
+
 /// The faces `after` cover exactly the points the faces `before` cover. Decided
 /// exactly, and only in the simple cases: the faces fall into a few planes across
 /// coordinate axes (CAD), or all lie in one plane, and in each plane all of them turn the same way and the boundary of the old faces

@@ -330,12 +330,10 @@ bool Collapser::cover_unchanged(int gone, int gone2) {
   {  // Curved stars leave here: a new face off the plane of the first old one, which is
      // not across a coordinate axis (same_cover would find that out at more cost).
     const auto& t = r_.faces[replaced_[0]];
-    const V3 a = P(t[0]), b = P(t[1]), c = P(t[2]);
-    bool axis = false;
-    for (int k = 0; k < 3; ++k) axis |= a[k] == b[k] && a[k] == c[k];
-    if (!axis)
+    const V3 old_face[3] = {P(t[0]), P(t[1]), P(t[2])};
+    if (axis_plane(old_face) < 0)
       for (const V3& q : new_pos_[0])
-        if (orient3d(a.data(), b.data(), c.data(), q.data()) != 0) return false;
+        if (orient3d(old_face[0].data(), old_face[1].data(), old_face[2].data(), q.data()) != 0) return false;
   }
   std::vector<PlacedFace>& before = scratch_before_;
   std::vector<PlacedFace>& after = scratch_after_;
