@@ -5,6 +5,7 @@
 #include "common/parallel_for.h"
 #include "union/body_validation.h"
 #include "union/candidate_pairs.h"
+#include "union/doubled_edges.h"
 #include "union/face_triangulation.h"
 #include "union/outside_surface.h"
 #include "union/sliver_collapse.h"
@@ -257,8 +258,10 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   }
   std::vector<int> vertex_of(3 * size_t(ns), -1);
   std::vector<char> cut;
+  std::vector<int> face_of_sub(size_t(ns), -1);
   for (int s = 0; s < ns; ++s) {
     if (!cl.kept[s]) continue;
+    face_of_sub[size_t(s)] = int(r.faces.size());
     std::array<int, 3> face;
     std::array<bool, 3> line;
     for (int z = 0; z < 3; ++z) {
@@ -275,12 +278,26 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
     r.line_edge.push_back(line);
   }
   r.faces_removed = ns - int(r.faces.size());
+  {  // Sheets that touch along a segment and meet again at both ends: one edge per sheet.
+    const auto doubled = doubled_line_edges(r);
+    if (!doubled.empty()) {
+      std::vector<int> partner(3 * r.faces.size(), -1);
+      for (int s = 0; s < ns; ++s)
+        if (cl.kept[s])
+          for (int z = 0; z < 3; ++z) {
+            const int p = cl.partner[3 * size_t(s) + size_t(z)];
+            if (p >= 0 && face_of_sub[size_t(p / 3)] >= 0)
+              partner[3 * size_t(face_of_sub[size_t(s)]) + size_t(z)] = 3 * face_of_sub[size_t(p / 3)] + p % 3;
+          }
+      r.doubled_edges_split = split_doubled_edges(r, cut, std::move(partner), doubled);
+    }
+  }
   r.time_classify_ms = ms_since(t);
 
   // Nothing above is needed any more: freed beside the sliver step.
   BackgroundRelease release;
   release.release(bodies, soup, pts, vertex_point, pairs, cf, intersector, may_meet, sub, sub_body, sub_face, sub_cut,
-                  dropped, kept_copy_body, cut_list, cut_triangles, cl, uf, vertex_of);
+                  dropped, kept_copy_body, cut_list, cut_triangles, cl, uf, vertex_of, face_of_sub);
   // 5. Slivers.
   t = Clock::now();
   if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,

@@ -169,6 +169,7 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
       {"faces_removed", QVariant(r.faces_removed)},
       {"slivers_collapsed", QVariant(r.slivers_collapsed)},
       {"orientation_conflicts", QVariant(r.orientation_conflicts)},
+      {"doubled_edges_split", QVariant(r.doubled_edges_split)},
       {"vertices", QVariant(int(r.vertices.size()))},
       {"faces", QVariant(int(r.faces.size()))},
       {"min_angle", QVariant(r.min_angle_deg)},

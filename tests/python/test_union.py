@@ -507,6 +507,25 @@ def test_bug_start_face_chosen_from_rounded_normals_at_a_shared_pole():
     assert self_intersecting_faces(ms.current_mesh()) <= 8  # (MeshLab's flags vary by run)
 
 
+@pytest.mark.parametrize("sliver_angle,rtol", [(0.0, EXACT_VOLUME_RTOL), (10.0, IMPROVED_VOLUME_RTOL)])
+def test_bug_cubes_touching_along_an_edge_that_a_third_body_closes_at_both_ends(sliver_angle, rtol):
+    # Found by fuzzing (seeds 1743, 2598, 4898 of fuzz_union.py): cubes B and C touch along
+    # an edge; cube A's top face holds one end of the touching segment, a sphere crosses
+    # the edge at the other. Around each end the surface is one fan, so both sheets' edges
+    # joined the same two vertices: four faces on one edge. Each sheet now has its own.
+    ms = pymeshlab.MeshSet()
+    for offset in [(0.5, 0.25, 0.5), (1.0, 0.5, 0.25), (0.0, 1.25, 1.25)]:
+        ms.create_cube(size=1)
+        ms.meshing_surface_subdivision_midpoint(iterations=1)
+        ms.compute_matrix_from_translation(axisx=offset[0], axisy=offset[1], axisz=offset[2])
+    ms.create_sphere(radius=0.5, subdiv=2)
+    ms.compute_matrix_from_translation(axisx=0.75, axisy=1.25, axisz=0.75)
+    ref = reference([ms.mesh(i) for i in range(4)])
+    r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle)
+    assert r["doubled_edges_split"] >= 1
+    assert check_union(ms, ms.mesh_number() - 1) == pytest.approx(ref, rel=rtol)
+
+
 def test_sliver_step_on_a_coarse_fifty_sphere_cluster_keeps_the_volume():
     # 50 icospheres of 320 triangles (smallest angle 54 deg), the benchmark's seed. The raw
     # cut has about 1400 faces under 5 deg. Measured after the default sliver step: none

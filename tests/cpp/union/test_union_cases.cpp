@@ -67,6 +67,21 @@ TEST(UnionCases, TwoCubesTouchingAlongAnEdgeStayManifold) {
   EXPECT_NEAR(volume(r), 16.0, 1e-12);
 }
 
+TEST(UnionCases, CubesTouchingAlongAnEdgeClosedAtBothEndsGetAnEdgeEach) {
+  // Cubes B and C touch along an edge; A's face holds one end of the touching segment
+  // and a sphere crosses it at the other. The surface is one fan around each end, so
+  // both sheets' edges would join the same two vertices (found by fuzz_union.py).
+  TriMesh ball;
+  test::sphere(ball, 2);
+  for (double sliver : {0.0, 10.0}) {
+    const Result r = unite({cube_body(2, 1, 0.5, 1), cube_body(2, 2, 1, 0.5), cube_body(2, 0, 2.5, 2.5),
+                            make_body(ball, 1.5, 2.5, 1.5)},
+                           sliver);
+    expect_closed(r);
+    EXPECT_GE(r.doubled_edges_split, 1) << "sliver angle " << sliver;
+  }
+}
+
 TEST(UnionCases, SphereAndIdenticalCopy) {
   TriMesh m;
   test::sphere(m, 3);
