@@ -3,6 +3,7 @@
 #include "common/errors.h"
 #include "common/parallel_for.h"
 #include "union/exact.h"
+#include "union/self_intersection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +24,7 @@ bool degenerate(const Body& b, const std::array<int, 3>& f) {
 }
 
 /// Checks body i and turns it outward if it is inward; returns whether it did.
-bool validate_body(Body& b, size_t i) {
+bool validate_body(Body& b, size_t i, bool self_intersections) {
   const std::string name = label(b, i);
   if (b.vertices.empty() || b.faces.empty()) throw InvalidInput(name + " is empty: it has no faces");
   for (const auto& v : b.vertices)
@@ -69,6 +70,10 @@ bool validate_body(Body& b, size_t i) {
   if (misoriented)
     throw TopologyError(name + " is not consistently oriented (" + std::to_string(misoriented) +
                         " edges): reorient it first (Cleaning and Repairing > Re-Orient all faces coherently)");
+  if (const auto pair = self_intersections ? self_intersection(b) : std::nullopt)
+    throw TopologyError(name + " intersects itself (its faces " + std::to_string((*pair)[0]) + " and " +
+                        std::to_string((*pair)[1]) + " cross): the union needs bodies with an inside; repair it "
+                        "first (Filters > Selection > Select Self Intersecting Faces shows where)");
   // Signed volume decides inward/outward.
   double vol = 0;
   for (const auto& f : b.faces) {
@@ -84,7 +89,7 @@ bool validate_body(Body& b, size_t i) {
 
 }  // namespace
 
-int validate_bodies(std::vector<Body>& bodies) {
+int validate_bodies(std::vector<Body>& bodies, bool self_intersections) {
   if (bodies.empty()) throw InvalidInput("there are no bodies: give visible layers or a mesh with closed components");
   // Bodies are independent: checked in parallel, and the first bad one in order is the
   // one reported, whatever thread found it.
@@ -92,7 +97,7 @@ int validate_bodies(std::vector<Body>& bodies) {
   std::vector<char> flipped(bodies.size(), 0);
   parallel_for(bodies.size(), 1, [&](size_t i) {
     try {
-      flipped[i] = validate_body(bodies[i], i);
+      flipped[i] = validate_body(bodies[i], i, self_intersections);
     } catch (...) {
       error[i] = std::current_exception();
     }

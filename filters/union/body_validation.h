@@ -1,5 +1,6 @@
-// Checks each body before any work: finite, non-degenerate, closed, manifold and
-// consistently oriented; inward-oriented bodies are flipped (returned count).
+// Checks each body before any work: finite, non-degenerate, closed, manifold,
+// consistently oriented and not crossing itself; inward-oriented bodies are flipped
+// (returned count).
 #pragma once
 
 #include "union/surface_union.h"
@@ -9,6 +10,7 @@
 namespace mr::surface_union {
 
 /// \throw InvalidInput / TopologyError naming the body. Flips inward bodies in place.
-int validate_bodies(std::vector<Body>& bodies);
+/// With `self_intersections`, a body that crosses itself is refused too.
+int validate_bodies(std::vector<Body>& bodies, bool self_intersections = true);
 
 }  // namespace mr::surface_union

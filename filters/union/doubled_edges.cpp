@@ -93,14 +93,14 @@ int split_doubled_edges(Result& r, std::vector<char>& cut, std::vector<int> part
       }
     }
     if (!paired) continue;
-    for (size_t k = 1; k < copies.size(); ++k) {
+    for (size_t k = 0; k < copies.size(); ++k) {
       const auto [s, p] = copies[k];
       const auto &pa = r.vertices[size_t(a)], &pb = r.vertices[size_t(b)];
       const int m = int(r.vertices.size());
       r.vertices.push_back({0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2])});
       split_copy(r, cut, partner, s / 3, s % 3, p / 3, p % 3, m);
-      ++split;
     }
+    ++split;
   }
   return split;
 }

@@ -12,11 +12,13 @@ namespace mr::surface_union {
 /// there do sheets of different bodies meet.
 std::vector<std::array<int, 2>> doubled_line_edges(const Result& r);
 
-/// Splits every copy of each `doubled` edge but the first at its middle, with a vertex of
-/// its own (coincident copies, one per sheet), so that every edge has two faces. Copies
+/// Splits every copy of each `doubled` edge at its middle, with a vertex of its own
+/// (coincident, one per sheet), so that every edge has two faces; the sheets then touch
+/// where their vertices coincide, as elsewhere in the output (read back as one body, they
+/// do not cross: self_intersection.h counts coincident corners as shared). Copies
 /// are the face pairs `partner` gives (per face side 3*f+z: the side across it, or -1);
 /// edges whose sides do not pair up are left as they are. New faces take their parent's
-/// `cut` flag. Returns the number of copies split.
+/// `cut` flag. Returns the number of edges split.
 int split_doubled_edges(Result& r, std::vector<char>& cut, std::vector<int> partner,
                         const std::vector<std::array<int, 2>>& doubled);
 

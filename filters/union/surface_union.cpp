@@ -115,7 +115,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
     throw InvalidInput("sliver deviation and volume change bounds must be >= 0");
   std::vector<Body> bodies = input;
   Result r;
-  r.bodies_reoriented = validate_bodies(bodies);
+  r.bodies_reoriented = validate_bodies(bodies, params.check_self_intersections);
   r.bodies = int(bodies.size());
 
   Soup soup;

@@ -30,6 +30,9 @@ struct Params {
   double sliver_max_deviation = 1e-3;
   /// Bound on the total volume change of all sliver moves, relative to the volume.
   double sliver_max_volume_change = 1e-6;
+  /// Refuse bodies that cross themselves (self_intersection.h). Off: such a body gives an
+  /// undefined result, at less cost for inputs known to be clean.
+  bool check_self_intersections = true;
 };
 
 struct Result {

@@ -72,6 +72,11 @@ RichParameterList FilterSurfaceUnionPlugin::initParameterList(const QAction*, co
                           "Bound on the volume change of the sliver step that its moves could not give back "
                           "(collapses, flips and relocations move a nearby vertex to keep the volume), as a "
                           "fraction of the volume of the union."));
+  list.addParam(RichBool("check_self_intersections", defaults.check_self_intersections,
+                         "Refuse bodies that cross themselves",
+                         "Check every body for faces that cross each other (exactly) and stop with a message "
+                         "naming the body. Off: such a body gives an undefined result; faster on inputs known "
+                         "to be clean (convex bodies cost almost nothing either way)."));
   list.addParam(RichBool("create_lines_layer", false, "Create a layer with the intersection lines",
                          "Add a new layer holding the intersection lines as an edge mesh (polylines)."));
   return list;
@@ -116,6 +121,7 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
   p.sliver_angle_deg = params.getFloat("sliver_angle");
   p.sliver_max_deviation = params.getFloat("sliver_max_deviation");
   p.sliver_max_volume_change = params.getFloat("sliver_max_volume_change");
+  p.check_self_intersections = params.getBool("check_self_intersections");
   const int source = params.getEnum("bodies");
 
   if (cb) cb(0, "Collecting bodies");

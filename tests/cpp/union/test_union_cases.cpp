@@ -1,6 +1,7 @@
 // Whole unions on synthetic bodies: closed, manifold, oriented, exact volumes.
 #include "common/errors.h"
 #include "shapes.h"
+#include "union/self_intersection.h"
 #include "union/surface_union.h"
 #include "union_checks.h"
 
@@ -142,6 +143,40 @@ TEST(UnionBadInput, MessagesNameTheBody) {
   EXPECT_THROW(compute_union({nan}), InvalidInput);
   EXPECT_THROW(compute_union({}), InvalidInput);
   EXPECT_THROW(compute_union({Body{}}), InvalidInput);
+}
+
+TEST(UnionBadInput, SelfIntersectingBodyIsNamed) {
+  // A cube's corner pushed through its opposite face: closed, manifold and oriented, but
+  // its faces cross.
+  Body bent = cube_body(1, 0, 0, 0);
+  for (auto& v : bent.vertices)
+    if (v == std::array<double, 3>{1, 1, 1}) v = {-0.5, -0.5, -3};
+  bent.name = "bent";
+  ASSERT_TRUE(self_intersection(bent).has_value());
+  try {
+    compute_union({cube_body(1, 5, 0, 0), bent});
+    FAIL();
+  } catch (const TopologyError& e) {
+    EXPECT_NE(std::string(e.what()).find("body 1 ('bent') intersects itself"), std::string::npos) << e.what();
+  }
+}
+
+TEST(UnionBadInput, SheetsTouchingAtCoincidentCornersAreNotSelfIntersections) {
+  // The union's own output where bodies touch (coincident vertices, one per sheet) read
+  // back as one body: along an edge, and along a segment closed at both ends.
+  EXPECT_FALSE(self_intersection(cube_body(2, 0, 0, 0)).has_value());
+  TriMesh ball;
+  test::sphere(ball, 2);
+  for (const auto& bodies : {std::vector<Body>{cube_body(1, 0, 0, 0), cube_body(1, 2, 2, 0)},
+                             std::vector<Body>{cube_body(2, 1, 0.5, 1), cube_body(2, 2, 1, 0.5),
+                                               cube_body(2, 0, 2.5, 2.5), make_body(ball, 1.5, 2.5, 1.5)}}) {
+    const Result r = unite(bodies, 0.0);
+    Body back;
+    back.vertices = r.vertices;
+    back.faces = r.faces;
+    EXPECT_FALSE(self_intersection(back).has_value());
+    EXPECT_NO_THROW(compute_union({back}));
+  }
 }
 
 TEST(UnionBadInput, TheFirstBadBodyInOrderIsReported) {
