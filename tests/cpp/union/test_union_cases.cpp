@@ -161,6 +161,23 @@ TEST(UnionBadInput, SelfIntersectingBodyIsNamed) {
   }
 }
 
+TEST(UnionBadInput, SelfIntersectionsOfLargeBodiesAreFoundOnTheGrid) {
+  // Over 512 faces the pairs come from a grid rather than the sweep: a clean non-convex body
+  // (two fine cubes united, an L-shaped step) has none; the same cube with one vertex pulled
+  // through the opposite side has some.
+  const Result step = unite({cube_body(24, 0, 0, 0), cube_body(24, 1, 1, 1)}, 0.0);
+  Body clean;
+  clean.vertices = step.vertices;
+  clean.faces = step.faces;
+  ASSERT_GT(clean.faces.size(), 4096u);
+  EXPECT_FALSE(self_intersection(clean).has_value());
+  Body spiked = cube_body(24, 0, 0, 0);
+  ASSERT_GT(spiked.faces.size(), 4096u);
+  for (auto& v : spiked.vertices)
+    if (v == std::array<double, 3>{0, 0, 1}) v = {0, 0, -1.5};
+  EXPECT_TRUE(self_intersection(spiked).has_value());
+}
+
 TEST(UnionBadInput, SheetsTouchingAtCoincidentCornersAreNotSelfIntersections) {
   // The union's own output where bodies touch (coincident vertices, one per sheet) read
   // back as one body: along an edge, and along a segment closed at both ends.
