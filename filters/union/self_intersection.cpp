@@ -53,10 +53,14 @@ Convexity convexity(const Body& b) {
     std::vector<int> next(begin.begin(), begin.end() - 1);
     for (int s = 0; s < 3 * nf; ++s) sides[size_t(next[size_t(low(s))]++)] = s;
   }
-  for (int v = 0; v < nv; ++v)  // insertion sort: buckets are a vertex's few edges
-    for (int i = begin[size_t(v)] + 1; i < begin[size_t(v) + 1]; ++i)
-      for (int j = i; j > begin[size_t(v)] && high(sides[size_t(j) - 1]) > high(sides[size_t(j)]); --j)
-        std::swap(sides[size_t(j) - 1], sides[size_t(j)]);
+  for (int v = 0; v < nv; ++v) {  // a vertex's few edges: insertion, but for a fan's apex
+    const auto first = sides.begin() + begin[size_t(v)], last = sides.begin() + begin[size_t(v) + 1];
+    auto by_high = [&](int x, int y) { return high(x) < high(y); };
+    if (last - first > 32) std::stable_sort(first, last, by_high);
+    else
+      for (auto i = first + (first != last); i < last; ++i)
+        for (auto j = i; j > first && by_high(*j, *(j - 1)); --j) std::iter_swap(j - 1, j);
+  }
   // Outward or inward (validation turns inward bodies over afterwards): a convex edge
   // has its neighbour's third corner below the face's plane, seen from outside.
   double volume = 0;
