@@ -1,5 +1,6 @@
 #include "union/body_validation.h"
 
+#include "common/edge_table.h"
 #include "common/errors.h"
 #include "common/parallel_for.h"
 #include "union/exact.h"
@@ -38,41 +39,22 @@ bool validate_body(Body& b, size_t i, bool self_intersections) {
       throw InvalidInput(name + " has degenerate (zero-area) faces: remove them first "
                                 "(Cleaning and Repairing > Remove Zero Area Faces)");
   }
-  // Directed edge counts: closed, manifold and consistently oriented means each
-  // undirected edge is used exactly once in each direction.
-  // Half-edges as (min, max, forward) sorted, so each undirected edge is one run: bucketed
-  // by the lower vertex (a counting sort), each bucket (a vertex's few edges) then sorted
-  // by insertion. std::sort on the triples was a fifth of a two-sphere union.
-  std::vector<int> begin(size_t(nv) + 1, 0);
-  for (const auto& f : b.faces)
-    for (int z = 0; z < 3; ++z) ++begin[size_t(std::min(f[z], f[(z + 1) % 3])) + 1];
-  for (int v = 0; v < nv; ++v) begin[size_t(v) + 1] += begin[size_t(v)];
-  std::vector<std::array<int, 3>> half(3 * b.faces.size());
-  {
-    std::vector<int> next(begin.begin(), begin.end() - 1);
-    for (const auto& f : b.faces)
-      for (int z = 0; z < 3; ++z) {
-        const int u = f[z], v = f[(z + 1) % 3];
-        half[size_t(next[size_t(std::min(u, v))]++)] = {std::min(u, v), std::max(u, v), u < v ? 1 : 0};
-      }
-  }
-  for (int v = 0; v < nv; ++v) {
-    const auto first = half.begin() + begin[size_t(v)], last = half.begin() + begin[size_t(v) + 1];
-    if (last - first > 32) std::sort(first, last);  // a fan's apex: no quadratic insertion
-    else
-      for (auto i = first + (first != last); i < last; ++i)
-        for (auto j = i; j > first && *(j - 1) > *j; --j) std::iter_swap(j - 1, j);
-  }
+  // Closed, manifold and consistently oriented: each edge has two face sides, one running
+  // from its lower vertex and one towards it.
+  const EdgeTable edges(b.vertices.size(), b.faces);
   int open = 0, nonmanifold = 0, misoriented = 0;
-  for (size_t run = 0; run < half.size();) {
-    size_t end = run;
-    int forward = 0;
-    while (end < half.size() && half[end][0] == half[run][0] && half[end][1] == half[run][1]) forward += half[end++][2];
-    const size_t n = end - run;
+  for (int e = 0; e < edges.edge_count(); ++e) {
+    const int n = edges.valence(e);
     if (n == 1) ++open;
     else if (n > 2) ++nonmanifold;
-    else if (forward != 1) ++misoriented;
-    run = end;
+    else {
+      int forward = 0;
+      for (int k = 0; k < 2; ++k) {
+        const FaceSide fs = edges.side(e, k);
+        forward += b.faces[size_t(fs.face)][size_t(fs.side)] == edges.v0(e);
+      }
+      misoriented += forward != 1;
+    }
   }
   if (open) throw TopologyError(name + " is not closed (" + std::to_string(open) +
                                 " boundary edges): close its holes first (Remeshing > Close Holes), or weld "
@@ -84,17 +66,13 @@ bool validate_body(Body& b, size_t i, bool self_intersections) {
   if (misoriented)
     throw TopologyError(name + " is not consistently oriented (" + std::to_string(misoriented) +
                         " edges): reorient it first (Cleaning and Repairing > Re-Orient all faces coherently)");
-  if (const auto pair = self_intersections ? self_intersection(b) : std::nullopt)
+  // Signed volume decides inward/outward.
+  const bool outward = faces_outward(b);
+  if (const auto pair = self_intersections ? self_intersection(b, edges, outward) : std::nullopt)
     throw TopologyError(name + " intersects itself (its faces " + std::to_string((*pair)[0]) + " and " +
                         std::to_string((*pair)[1]) + " cross): the union needs bodies with an inside; repair it "
                         "first (Filters > Selection > Select Self Intersecting Faces shows where)");
-  // Signed volume decides inward/outward.
-  double vol = 0;
-  for (const auto& f : b.faces) {
-    const auto &p = b.vertices[f[0]], &q = b.vertices[f[1]], &r = b.vertices[f[2]];
-    vol += p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) + p[2] * (q[0] * r[1] - q[1] * r[0]);
-  }
-  if (vol < 0) {
+  if (!outward) {
     for (auto& f : b.faces) std::swap(f[1], f[2]);
     return true;
   }

@@ -1,8 +1,9 @@
 // A body that crosses itself has no inside that the union could be decided by. Found
-// before any work: a grid over the body's face boxes, then the exact triangle test of
-// face_clearance.h on the pairs whose boxes overlap.
+// before any work: the face pairs whose boxes overlap (face_clearance's grid) get the
+// exact triangle test of face_clearance.h, but where the surface is locally convex.
 #pragma once
 
+#include "common/edge_table.h"
 #include "union/surface_union.h"
 
 #include <array>
@@ -10,9 +11,16 @@
 
 namespace mr::surface_union {
 
+/// The faces of `b` turn outward: its signed volume is not negative.
+bool faces_outward(const Body& b);
+
 /// Two faces of `b` that meet other than along what they share (corners count as shared
 /// when their ids or their positions are equal): the first found with the smallest first
-/// face, or none.
+/// face, or none. `edges` is b's edge table, every edge with two sides (a closed,
+/// manifold body); `outward` as faces_outward(b).
+std::optional<std::array<int, 2>> self_intersection(const Body& b, const EdgeTable& edges, bool outward);
+
+/// The same, building the edge table and the orientation.
 std::optional<std::array<int, 2>> self_intersection(const Body& b);
 
 }  // namespace mr::surface_union

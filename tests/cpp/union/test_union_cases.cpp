@@ -161,10 +161,10 @@ TEST(UnionBadInput, SelfIntersectingBodyIsNamed) {
   }
 }
 
-TEST(UnionBadInput, SelfIntersectionsOfLargeBodiesAreFoundOnTheGrid) {
-  // Over 512 faces the pairs come from a grid rather than the sweep: a clean non-convex body
-  // (two fine cubes united, an L-shaped step) has none; the same cube with one vertex pulled
-  // through the opposite side has some.
+TEST(UnionBadInput, SelfIntersectionsOfLargeBodies) {
+  // Bodies of thousands of faces, where the grid holds many faces per level: a clean
+  // non-convex body (two fine cubes united, an L-shaped step) has none; the same cube with
+  // one vertex pulled through the opposite side has some.
   const Result step = unite({cube_body(24, 0, 0, 0), cube_body(24, 1, 1, 1)}, 0.0);
   Body clean;
   clean.vertices = step.vertices;
