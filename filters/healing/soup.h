@@ -4,6 +4,7 @@
 
 #include "common/edge_table.h"
 #include "common/tri_mesh.h"
+#include "common/union_find.h"
 
 #include <array>
 #include <numeric>
@@ -19,25 +20,5 @@ struct Soup {
 
 /// Every undirected edge of the soup (degenerate sides left out): deterministic and O(N).
 inline EdgeTable soup_edges(const Soup& s) { return EdgeTable(s.pos.size(), s.tri); }
-
-class UnionFind {
-public:
-  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int a) {
-    while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
-    return a;
-  }
-  /// Joins the sets; the smaller root index stays root (deterministic).
-  void unite(int a, int b) {
-    a = find(a); b = find(b);
-    if (a == b) return;
-    if (b < a) std::swap(a, b);
-    parent_[b] = a;
-  }
-  void grow(int n) { for (int i = int(parent_.size()); i < n; ++i) parent_.push_back(i); }
-
-private:
-  std::vector<int> parent_;
-};
 
 }  // namespace mr::healing

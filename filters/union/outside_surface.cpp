@@ -1,5 +1,6 @@
 #include "union/outside_surface.h"
 
+#include "common/union_find.h"
 #include "union/exact.h"
 
 #include <algorithm>
@@ -16,11 +17,6 @@ V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2
 double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 V3 cross(const V3& a, const V3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-int find(std::vector<int>& uf, int x) {
-  while (uf[x] != x) x = uf[x] = uf[uf[x]];
-  return x;
 }
 
 /// Generalized winding number of point p with respect to the faces of one body; 0.5
@@ -92,8 +88,7 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
   group_begin.push_back(int(he.size()));
 
   // Intersection edges and pieces.
-  std::vector<int> uf(ns);
-  std::iota(uf.begin(), uf.end(), 0);
+  UnionFind uf(ns);
   for (size_t g = 0; g + 1 < group_begin.size(); ++g) {
     const int b = group_begin[g], e = group_begin[g + 1];
     // Where bodies meet; copies lying on a lower body's faces do not count.
@@ -101,7 +96,7 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     bool mixed = false;
     for (int i = b; i < e; ++i) {
       const int f = he[i].side / 3;
-      if (i > b) uf[find(uf, f)] = find(uf, he[b].side / 3);
+      if (i > b) uf.unite(f, he[b].side / 3);
       if (kept_copy_body[f] >= 0) continue;
       ++originals;
       if (first_body < 0) first_body = sub_body[f];
@@ -180,7 +175,7 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
     std::vector<int> piece_of_root(ns, -1);
     for (int s = 0; s < ns; ++s) {
       if (dropped[s]) continue;
-      const int r = find(uf, s);
+      const int r = uf.find(s);
       if (piece_of_root[r] < 0) piece_of_root[r] = pieces++;
       piece_of[s] = piece_of_root[r];
     }

@@ -1,21 +1,16 @@
 #include "union/self_intersection.h"
 
+#include "common/union_find.h"
 #include "union/exact.h"
 #include "union/face_clearance.h"
 #include "union/triangle_angles.h"
 
 #include <algorithm>
-#include <numeric>
 #include <vector>
 
 namespace mr::surface_union {
 
 namespace {
-
-int find(std::vector<int>& uf, int x) {
-  while (uf[size_t(x)] != x) x = uf[size_t(x)] = uf[size_t(uf[size_t(x)])];
-  return x;
-}
 
 /// Where the surface is locally convex. A vertex is when every edge at it is convex or
 /// flat (exact) and its face angles sum to at most 2 pi (doubles: within 1e-9 counts as
@@ -33,12 +28,11 @@ Convexity convexity(const Body& b, const EdgeTable& edges, bool outward) {
   out.vertex.assign(b.vertices.size(), 1);
   // A convex edge has its neighbour's third corner below the face's plane, seen from outside.
   const int reflex = outward ? 1 : -1;
-  std::vector<int> uf(static_cast<size_t>(nf));
-  std::iota(uf.begin(), uf.end(), 0);
+  UnionFind pieces(nf);
   for (int e = 0; e < edges.edge_count(); ++e) {
     if (edges.valence(e) != 2) return out;  // (validated before: two sides per edge)
     const FaceSide s = edges.side(e, 0), o = edges.side(e, 1);
-    uf[size_t(find(uf, s.face))] = find(uf, o.face);
+    pieces.unite(s.face, o.face);
     const auto& t = b.faces[size_t(s.face)];
     const int d = b.faces[size_t(o.face)][size_t((o.side + 2) % 3)];
     if (orient3d(b.vertices[size_t(t[size_t(s.side)])].data(), b.vertices[size_t(t[size_t((s.side + 1) % 3)])].data(),
@@ -55,7 +49,7 @@ Convexity convexity(const Body& b, const EdgeTable& edges, bool outward) {
   for (size_t v = 0; v < angle.size(); ++v)
     if (angle[v] > 2 * 3.14159265358979323846 + 1e-9) out.vertex[v] = 0;
   out.whole = std::all_of(out.vertex.begin(), out.vertex.end(), [](char c) { return c != 0; });
-  for (int f = 1; f < nf && out.whole; ++f) out.whole = find(uf, f) == find(uf, 0);
+  for (int f = 1; f < nf && out.whole; ++f) out.whole = pieces.find(f) == pieces.find(0);
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include "common/background_release.h"
 #include "common/errors.h"
 #include "common/parallel_for.h"
+#include "common/union_find.h"
 #include "union/body_validation.h"
 #include "union/candidate_pairs.h"
 #include "union/doubled_edges.h"
@@ -16,7 +17,6 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
-#include <numeric>
 #include <set>
 
 namespace mr::surface_union {
@@ -25,11 +25,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-int find(std::vector<int>& uf, int x) {
-  while (uf[x] != x) x = uf[x] = uf[uf[x]];
-  return x;
-}
 
 /// Sub-face `sub` of a face cut along coplanar soup face g lies inside g, exactly. The
 /// cut follows g's sides, so the sub-face lies inside or outside g as a whole: inside
@@ -241,8 +236,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   // Output vertices: one per fan of kept faces around a point (so bodies touching
   // along an edge or at a point give a manifold result).
   const int ns = int(sub.size());
-  std::vector<int> uf(3 * size_t(ns));
-  std::iota(uf.begin(), uf.end(), 0);
+  UnionFind uf(3 * ns);
   for (int s = 0; s < ns; ++s) {
     if (!cl.kept[s]) continue;
     for (int z = 0; z < 3; ++z) {
@@ -250,10 +244,8 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
       if (side < 0) continue;
       const int u = side / 3, y = side % 3;
       // The edge's start corner of s meets the end corner of the partner, and vice versa.
-      const int a = find(uf, 3 * s + z), b = find(uf, 3 * u + (y + 1) % 3);
-      uf[a] = b;
-      const int c = find(uf, 3 * s + (z + 1) % 3), d = find(uf, 3 * u + y);
-      uf[c] = d;
+      uf.unite(3 * s + z, 3 * u + (y + 1) % 3);
+      uf.unite(3 * s + (z + 1) % 3, 3 * u + y);
     }
   }
   std::vector<int> vertex_of(3 * size_t(ns), -1);
@@ -265,7 +257,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
     std::array<int, 3> face;
     std::array<bool, 3> line;
     for (int z = 0; z < 3; ++z) {
-      const int root = find(uf, 3 * s + z);
+      const int root = uf.find(3 * s + z);
       if (vertex_of[root] < 0) {
         vertex_of[root] = int(r.vertices.size());
         r.vertices.push_back(pts[sub[s][z]].d);
@@ -332,19 +324,17 @@ Body body_from_mesh(const TriMesh& mesh, const std::string& name) {
 std::vector<Body> bodies_from_components(const TriMesh& mesh) {
   // Faces connected through shared vertices form one component.
   const int nv = int(mesh.vert.size());
-  std::vector<int> uf(nv);
-  std::iota(uf.begin(), uf.end(), 0);
+  UnionFind uf(nv);
   for (const auto& f : mesh.face) {
     if (f.IsD()) continue;
-    const int a = find(uf, int(vcg::tri::Index(mesh, f.cV(0))));
-    for (int z = 1; z < 3; ++z) uf[find(uf, int(vcg::tri::Index(mesh, f.cV(z))))] = a;
+    for (int z = 1; z < 3; ++z) uf.unite(int(vcg::tri::Index(mesh, f.cV(0))), int(vcg::tri::Index(mesh, f.cV(z))));
   }
   std::map<int, int> body_of_root;
   std::vector<Body> bodies;
   std::vector<int> local(nv, -1);
   for (const auto& f : mesh.face) {
     if (f.IsD()) continue;
-    const int root = find(uf, int(vcg::tri::Index(mesh, f.cV(0))));
+    const int root = uf.find(int(vcg::tri::Index(mesh, f.cV(0))));
     auto [it, added] = body_of_root.emplace(root, int(bodies.size()));
     if (added) {
       bodies.emplace_back();
