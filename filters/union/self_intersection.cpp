@@ -30,7 +30,10 @@ Convexity convexity(const Body& b, const EdgeTable& edges, bool outward) {
   const int reflex = outward ? 1 : -1;
   UnionFind pieces(nf);
   for (int e = 0; e < edges.edge_count(); ++e) {
-    if (edges.valence(e) != 2) return out;  // (validated before: two sides per edge)
+    if (edges.valence(e) != 2) {  // not closed and manifold: no vertex is known to be convex
+      out.vertex.assign(b.vertices.size(), 0);
+      return out;
+    }
     const FaceSide s = edges.side(e, 0), o = edges.side(e, 1);
     pieces.unite(s.face, o.face);
     const auto& t = b.faces[size_t(s.face)];

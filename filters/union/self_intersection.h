@@ -16,8 +16,8 @@ bool faces_outward(const Body& b);
 
 /// Two faces of `b` that meet other than along what they share (corners count as shared
 /// when their ids or their positions are equal): the first found with the smallest first
-/// face, or none. `edges` is b's edge table, every edge with two sides (a closed,
-/// manifold body); `outward` as faces_outward(b).
+/// face, or none. `edges` is b's edge table; `outward` as faces_outward(b). The convex
+/// shortcuts need a closed, manifold body; on any other every pair is tested.
 std::optional<std::array<int, 2>> self_intersection(const Body& b, const EdgeTable& edges, bool outward);
 
 /// The same, building the edge table and the orientation.

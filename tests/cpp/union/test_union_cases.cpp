@@ -161,6 +161,20 @@ TEST(UnionBadInput, SelfIntersectingBodyIsNamed) {
   }
 }
 
+TEST(UnionBadInput, SelfIntersectionOfAnOpenBodyTestsEveryPair) {
+  // Without two faces on every edge no vertex is known convex, so faces sharing only a
+  // corner are tested too: a fan whose last face folds back over its first (they share
+  // only the apex) crosses itself; the fan without the fold does not.
+  Body fan;
+  fan.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, 0.5, 0}};
+  fan.faces = {{0, 1, 2}, {0, 2, 3}};
+  EXPECT_FALSE(self_intersection(fan).has_value());
+  fan.faces.push_back({0, 3, 4});
+  const auto pair = self_intersection(fan);
+  ASSERT_TRUE(pair.has_value());
+  EXPECT_EQ(*pair, (std::array<int, 2>{0, 2}));
+}
+
 TEST(UnionBadInput, SelfIntersectionsOfLargeBodies) {
   // Bodies of thousands of faces, where the grid holds many faces per level: a clean
   // non-convex body (two fine cubes united, an L-shaped step) has none; the same cube with
