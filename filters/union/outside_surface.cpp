@@ -235,10 +235,35 @@ Classification classify_outside(const PointTable& points, const std::vector<std:
       if (kept_copy_body[s] >= 0)
         for (int r : pieces_of_body[kept_copy_body[s]]) piece_bodies[r].insert(sub_body[s]);
   }
+  // The start face lies on the piece's outer edge: among the edges at the extreme vertex,
+  // the one closest to perpendicular to x (largest d_x / |d|, all d_x <= 0). The directions
+  // between it and +x cross no face, so the faces around it that bound that wedge are
+  // outside, and of those the one whose normal leans most towards +x faces it. Comparing
+  // the normals of all faces at the vertex instead can pick a face tilted by 1e-16 that is
+  // inside another body touching there (spheres sharing a pole).
+  std::vector<int> outer_end(pieces, -1);  // the outer edge's other point
+  auto closer_to_perpendicular = [&](int p, int u, int w) {  // edge p-u before p-w
+    mpq_class du[3], dw[3];
+    for (int k = 0; k < 3; ++k) { du[k] = points[u].q(k) - points[p].q(k); dw[k] = points[w].q(k) - points[p].q(k); }
+    const mpq_class lu = du[0] * du[0] + du[1] * du[1] + du[2] * du[2];
+    const mpq_class lw = dw[0] * dw[0] + dw[1] * dw[1] + dw[2] * dw[2];
+    return du[0] * du[0] * lw < dw[0] * dw[0] * lu;  // |du_x| / |du| < |dw_x| / |dw|
+  };
   for (int s = 0; s < ns; ++s) {
     if (dropped[s]) continue;
     const int r = piece_of[s];
     if (!at_extreme(s, r)) continue;
+    for (int z = 0; z < 3; ++z) {
+      const int u = sub[s][z];
+      if (u == extreme[r] || u == outer_end[r]) continue;
+      if (outer_end[r] < 0 || closer_to_perpendicular(extreme[r], u, outer_end[r])) outer_end[r] = u;
+    }
+  }
+  for (int s = 0; s < ns; ++s) {
+    if (dropped[s]) continue;
+    const int r = piece_of[s];
+    if (!at_extreme(s, r)) continue;
+    if (sub[s][0] != outer_end[r] && sub[s][1] != outer_end[r] && sub[s][2] != outer_end[r]) continue;
     if (start[r] < 0 || faces_more_towards_x(s, start[r])) start[r] = s;
   }
   // Faces of each body, for the point-in-body test.

@@ -536,6 +536,25 @@ def test_bug_start_face_chosen_from_rounded_normals_at_a_shared_pole():
 
 
 @pytest.mark.parametrize("sliver_angle,rtol", [(0.0, EXACT_VOLUME_RTOL), (10.0, IMPROVED_VOLUME_RTOL)])
+@pytest.mark.parametrize("small_first", [False, True])
+def test_bug_start_face_on_the_outer_edge_where_a_sphere_scaled_about_its_pole_touches(small_first, sliver_angle, rtol):
+    # Found by fuzzing (12 of seeds 0-39999, e.g. 26974): the small sphere is the big one
+    # scaled by 1/2 about its +x pole. The fill started on the face at the extreme vertex
+    # whose normal leaned most towards +x: a small-sphere face tilted by 1e-16, inside the big
+    # sphere. The union failed ("could not be told apart ... 8 ambiguous edges"). The start
+    # face now lies on the outer edge at that vertex.
+    spheres = [((0.5, 1, 0.5), 1.0), ((1, 1, 0.5), 0.5)]
+    ms = _scaled_spheres(spheres[::-1] if small_first else spheres)
+    big = ms.mesh(1 if small_first else 0)
+    big_volume = pymeshlab.MeshSet()
+    big_volume.add_mesh(big)
+    ref = big_volume.get_geometric_measures()["mesh_volume"]
+    r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle)
+    assert r["orientation_conflicts"] == 0
+    assert check_union(ms, 2) == pytest.approx(ref, rel=rtol)
+
+
+@pytest.mark.parametrize("sliver_angle,rtol", [(0.0, EXACT_VOLUME_RTOL), (10.0, IMPROVED_VOLUME_RTOL)])
 def test_bug_cubes_touching_along_an_edge_that_a_third_body_closes_at_both_ends(sliver_angle, rtol):
     # Found by fuzzing (seeds 1743, 2598, 4898 of fuzz_union.py): cubes B and C touch along
     # an edge; cube A's top face holds one end of the touching segment, a sphere crosses

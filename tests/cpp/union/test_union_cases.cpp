@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -91,6 +92,32 @@ TEST(UnionCases, SphereAndIdenticalCopy) {
   expect_closed(r);
   EXPECT_NEAR(volume(r), volume(a), 1e-12);
   EXPECT_EQ(r.faces.size(), a.faces.size());
+}
+
+TEST(UnionCases, SphereScaledByHalfAboutItsPoleInsideItself) {
+  // Found by fuzzing (12 seeds of 40,000): the small sphere touches the big one at the
+  // pole, and its faces there lie in the big one's planes or are tilted by 1e-16. The fill
+  // started on the face at the extreme vertex whose normal leaned most towards +x, which
+  // was a small-sphere face inside the big one (orientation conflicts, then a failure). It
+  // now starts on the outer edge at that vertex.
+  TriMesh m;
+  test::sphere(m, 2);
+  const Body unit = make_body(m);
+  std::array<double, 3> pole = unit.vertices[0];
+  for (const auto& p : unit.vertices)
+    if (p > pole) pole = p;  // lexicographic: the extreme vertex
+  for (const std::array<double, 3> c : {std::array<double, 3>{0.1, 0.8, 0}, {0.1, 0.8, 0.5}, {0.5, 1, 0.5}}) {
+    // big = unit + c, small = unit / 2 + c + pole / 2: the same pole, other vertices rounded
+    const Body big = make_body(m, c[0], c[1], c[2]);
+    const Body small = make_body(m, c[0] + pole[0] / 2, c[1] + pole[1] / 2, c[2] + pole[2] / 2, 0.5);
+    for (double sliver : {0.0, 10.0})
+      for (int order = 0; order < 2; ++order) {
+        const Result r = order ? unite({small, big}, sliver) : unite({big, small}, sliver);
+        expect_closed(r);
+        EXPECT_EQ(r.orientation_conflicts, 0);
+        EXPECT_NEAR(volume(r) / volume(big), 1.0, sliver > 0 ? 1e-6 : 1e-12);
+      }
+  }
 }
 
 TEST(UnionCases, TwoOverlappingSpheres) {
