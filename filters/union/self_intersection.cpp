@@ -6,54 +6,97 @@
 #include "union/triangle_angles.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace mr::surface_union {
 
 namespace {
 
-/// Where the surface is locally convex. A vertex is when every edge at it is convex or
-/// flat (exact) and its face angles sum to at most 2 pi (doubles: within 1e-9 counts as
-/// flat): two faces at such a vertex lie on a convex cone there and meet only at it or
-/// along an edge. A body that is one piece and convex at every vertex bounds a convex
-/// body (a closed, locally convex surface: Van Heijenoort 1952) and cannot cross itself.
-struct Convexity {
-  std::vector<char> vertex;  // per vertex
-  bool whole = false;
-};
+V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
 
-Convexity convexity(const Body& b, const EdgeTable& edges, bool outward) {
-  const int nf = int(b.faces.size());
-  Convexity out;
-  out.vertex.assign(b.vertices.size(), 1);
+/// Where the surface is locally convex (per vertex). A vertex is when every edge at it is
+/// convex or flat (exact) and its face angles sum to at most 2 pi (doubles: within 1e-9
+/// counts as flat): two faces at such a vertex lie on a convex cone there and meet only at
+/// it or along an edge. (A body convex at every vertex is also star-shaped, below.)
+std::vector<char> convex_vertices(const Body& b, const EdgeTable& edges, bool outward) {
+  std::vector<char> convex(b.vertices.size(), 1);
   // A convex edge has its neighbour's third corner below the face's plane, seen from outside.
   const int reflex = outward ? 1 : -1;
-  UnionFind pieces(nf);
   for (int e = 0; e < edges.edge_count(); ++e) {
     if (edges.valence(e) != 2) {  // not closed and manifold: no vertex is known to be convex
-      out.vertex.assign(b.vertices.size(), 0);
-      return out;
+      convex.assign(b.vertices.size(), 0);
+      return convex;
     }
     const FaceSide s = edges.side(e, 0), o = edges.side(e, 1);
-    pieces.unite(s.face, o.face);
     const auto& t = b.faces[size_t(s.face)];
     const int d = b.faces[size_t(o.face)][size_t((o.side + 2) % 3)];
     if (orient3d(b.vertices[size_t(t[size_t(s.side)])].data(), b.vertices[size_t(t[size_t((s.side + 1) % 3)])].data(),
                  b.vertices[size_t(t[size_t((s.side + 2) % 3)])].data(), b.vertices[size_t(d)].data()) == reflex)
-      out.vertex[size_t(edges.v0(e))] = out.vertex[size_t(edges.v1(e))] = 0;
+      convex[size_t(edges.v0(e))] = convex[size_t(edges.v1(e))] = 0;
   }
   std::vector<double> angle(b.vertices.size(), 0);
   for (const auto& t : b.faces)
     for (int z = 0; z < 3; ++z)
-      if (out.vertex[size_t(t[size_t(z)])])  // (reflex already: its angles do not matter)
+      if (convex[size_t(t[size_t(z)])])  // (reflex already: its angles do not matter)
         angle[size_t(t[size_t(z)])] += corner_angle(b.vertices[size_t(t[size_t(z)])],
                                                     b.vertices[size_t(t[size_t((z + 1) % 3)])],
                                                     b.vertices[size_t(t[size_t((z + 2) % 3)])]);
   for (size_t v = 0; v < angle.size(); ++v)
-    if (angle[v] > 2 * 3.14159265358979323846 + 1e-9) out.vertex[v] = 0;
-  out.whole = std::all_of(out.vertex.begin(), out.vertex.end(), [](char c) { return c != 0; });
-  for (int f = 1; f < nf && out.whole; ++f) out.whole = pieces.find(f) == pieces.find(0);
-  return out;
+    if (angle[v] > 2 * 3.14159265358979323846 + 1e-9) convex[v] = 0;
+  return convex;
+}
+
+/// Whether b is star-shaped about its vertex centroid c in the sense that proves it
+/// embedded: closed, manifold along edges, one piece, every face strictly facing away from
+/// c (exact), and the faces at each vertex going once around it as seen from c. The
+/// projection from c onto a sphere is then a local homeomorphism of a connected closed
+/// surface onto the sphere: a covering, one sheet as the sphere is simply connected, so
+/// no two points of the surface share a ray from c and no faces cross. Convex bodies and
+/// blobs (molecules, the rabbit's parts, noisy spheres) pass; CAD plates with holes do not.
+bool star_shaped(const Body& b, const EdgeTable& edges, bool outward) {
+  const int nf = int(b.faces.size());
+  UnionFind pieces(nf);
+  for (int e = 0; e < edges.edge_count(); ++e) {
+    if (edges.valence(e) != 2) return false;
+    pieces.unite(edges.side(e, 0).face, edges.side(e, 1).face);
+  }
+  for (int f = 1; f < nf; ++f)
+    if (pieces.find(f) != pieces.find(0)) return false;
+  V3 c{0, 0, 0};
+  for (const V3& p : b.vertices)
+    for (size_t k = 0; k < 3; ++k) c[k] += p[k];
+  for (size_t k = 0; k < 3; ++k) c[k] /= double(b.vertices.size());
+  const int inner = outward ? -1 : 1;  // orient3d's sign for a point on a face's inner side
+  std::vector<double> turn(b.vertices.size(), 0);
+  for (const auto& t : b.faces) {
+    const V3 &p = b.vertices[size_t(t[0])], &q = b.vertices[size_t(t[1])], &r = b.vertices[size_t(t[2])];
+    if (orient3d(p.data(), q.data(), r.data(), c.data()) != inner) return false;
+    // The face's angle at each corner v as seen from c: between the half-planes (c, v, a)
+    // and (c, v, b) about the ray through v.
+    for (size_t z = 0; z < 3; ++z) {
+      const V3& v = b.vertices[size_t(t[z])];
+      const V3 axis = sub(v, c);
+      const double aa = dot(axis, axis);
+      auto across = [&](const V3& x) {
+        const V3 d = sub(x, v);
+        const double s = dot(d, axis) / aa;
+        return V3{d[0] - s * axis[0], d[1] - s * axis[1], d[2] - s * axis[2]};
+      };
+      const V3 u = across(b.vertices[size_t(t[(z + 1) % 3])]), w = across(b.vertices[size_t(t[(z + 2) % 3])]);
+      const V3 n = cross(u, w);
+      turn[size_t(t[z])] += std::atan2(std::sqrt(dot(n, n)), dot(u, w));
+    }
+  }
+  // Once around is 2 pi, twice or more at least 4 pi (each face counts positively: it
+  // faces away from c), so rounding cannot blur the two.
+  for (double a : turn)
+    if (a > 3 * 3.14159265358979323846) return false;
+  return true;
 }
 
 }  // namespace
@@ -74,8 +117,8 @@ std::optional<std::array<int, 2>> self_intersection(const Body& b) {
 std::optional<std::array<int, 2>> self_intersection(const Body& b, const EdgeTable& edges, bool outward) {
   const int nf = int(b.faces.size());
   if (nf < 2) return std::nullopt;
-  const Convexity convex = convexity(b, edges, outward);
-  if (convex.whole) return std::nullopt;
+  if (star_shaped(b, edges, outward)) return std::nullopt;
+  const std::vector<char> convex = convex_vertices(b, edges, outward);
   FaceGrid grid(b.vertices, b.faces);
   std::vector<int> near;
   for (int f = 0; f < nf; ++f) {
@@ -90,7 +133,7 @@ std::optional<std::array<int, 2>> self_intersection(const Body& b, const EdgeTab
       for (int x : tf)
         if (x == tg[0] || x == tg[1] || x == tg[2]) { ++shared; at = x; }
       if (shared >= 2) continue;                              // neighbours across an edge meet only along it
-      if (shared == 1 && convex.vertex[size_t(at)]) continue;  // on a convex cone at their corner
+      if (shared == 1 && convex[size_t(at)]) continue;  // on a convex cone at their corner
       const V3 pf[3] = {b.vertices[size_t(tf[0])], b.vertices[size_t(tf[1])], b.vertices[size_t(tf[2])]};
       const V3 pg[3] = {b.vertices[size_t(tg[0])], b.vertices[size_t(tg[1])], b.vertices[size_t(tg[2])]};
       if (triangles_meet(tf, pf, tg, pg)) return std::array<int, 2>{f, g};

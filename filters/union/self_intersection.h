@@ -1,6 +1,8 @@
 // A body that crosses itself has no inside that the union could be decided by. Found
-// before any work: the face pairs whose boxes overlap (face_clearance's grid) get the
-// exact triangle test of face_clearance.h, but where the surface is locally convex.
+// before any work: bodies star-shaped about their vertex centroid (convex ones, blobs)
+// cannot cross themselves; on the others the face pairs whose boxes overlap
+// (face_clearance's grid) get the exact triangle test of face_clearance.h, but where the
+// surface is locally convex.
 #pragma once
 
 #include "common/edge_table.h"

@@ -203,20 +203,50 @@ TEST(UnionBadInput, SelfIntersectionOfAnOpenBodyTestsEveryPair) {
 }
 
 TEST(UnionBadInput, SelfIntersectionsOfLargeBodies) {
-  // Bodies of thousands of faces, where the grid holds many faces per level: a clean
-  // non-convex body (two fine cubes united, an L-shaped step) has none; the same cube with
-  // one vertex pulled through the opposite side has some.
-  const Result step = unite({cube_body(24, 0, 0, 0), cube_body(24, 1, 1, 1)}, 0.0);
-  Body clean;
-  clean.vertices = step.vertices;
-  clean.faces = step.faces;
-  ASSERT_GT(clean.faces.size(), 4096u);
-  EXPECT_FALSE(self_intersection(clean).has_value());
+  // Bodies of thousands of faces: a clean non-convex body star-shaped about its vertex
+  // centroid (two fine cubes united, an L-shaped step) and a clean ring of eight cubes
+  // around a hole (not star-shaped: every overlapping face pair is tested) have none; a
+  // cube with one vertex pulled through the opposite side has some.
+  auto as_body = [](const Result& r) {
+    Body b;
+    b.vertices = r.vertices;
+    b.faces = r.faces;
+    return b;
+  };
+  const Body step = as_body(unite({cube_body(24, 0, 0, 0), cube_body(24, 1, 1, 1)}, 0.0));
+  ASSERT_GT(step.faces.size(), 4096u);
+  EXPECT_FALSE(self_intersection(step).has_value());
+  std::vector<Body> ring;
+  for (const auto& [x, y] : {std::pair{0.0, 0.0}, {1.5, 0.0}, {3.0, 0.0}, {3.0, 1.5}, {3.0, 3.0}, {1.5, 3.0},
+                             {0.0, 3.0}, {0.0, 1.5}})
+    ring.push_back(cube_body(16, x, y, 0));  // grid step 1/8: exact, no rounded crossings
+  const Body ring_body = as_body(unite(ring, 0.0));
+  ASSERT_GT(ring_body.faces.size(), 4096u);
+  EXPECT_FALSE(self_intersection(ring_body).has_value());
   Body spiked = cube_body(24, 0, 0, 0);
   ASSERT_GT(spiked.faces.size(), 4096u);
   for (auto& v : spiked.vertices)
     if (v == std::array<double, 3>{0, 0, 1}) v = {0, 0, -1.5};
   EXPECT_TRUE(self_intersection(spiked).has_value());
+}
+
+TEST(UnionBadInput, BodyWindingTwiceAroundAVertexIsNotTakenForStarShaped) {
+  // A bipyramid over a pentagram: every face faces away from the centre, the body is
+  // closed, manifold and one piece, but the faces at each apex go twice around it, so
+  // they cross. The star-shaped shortcut must not skip it.
+  Body star;
+  star.vertices = {{0, 0, 1}, {0, 0, -1}};
+  for (int i = 0; i < 5; ++i) {
+    const double a = 4 * 3.14159265358979323846 * i / 5;  // every second corner of a pentagon
+    star.vertices.push_back({std::cos(a), std::sin(a), 0});
+  }
+  for (int i = 0; i < 5; ++i) {
+    const int p = 2 + i, q = 2 + (i + 1) % 5;
+    star.faces.push_back({0, p, q});
+    star.faces.push_back({1, q, p});
+  }
+  star.name = "pentagram";
+  EXPECT_TRUE(self_intersection(star).has_value());
 }
 
 TEST(UnionBadInput, SheetsTouchingAtCoincidentCornersAreNotSelfIntersections) {
