@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Random unions with many degenerate contacts, checked against manifold3d.
 
-Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED
+Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex]
 Each seed builds 2-7 bodies of one kind: grid-aligned cubes (coplanar faces, shared edges,
 touching), spheres on a 0.1 grid (identical copies, touching poles), subdivided cubes and
 spheres on a quarter grid, spheres of several radii sharing centres and poles, randomly rotated
-cubes. Each is united with the sliver step off and on and must give no error, a closed two-
+cubes. With --nonconvex the bodies are not convex: spheres with radial noise (blobs), rotated
+tori (not star-shaped), and a blob with copies of itself scaled about one of its vertices or
+shifted on a grid (coincident and nearly coincident faces). Each is united with the sliver step off and on and must give no error, a closed two-
 manifold surface and manifold3d's volume (cavities filled): 1e-9 relative without the sliver
 step, its volume budget (1e-6) with it. Prints the failing seeds; not part of the test suite.
 """
@@ -61,12 +63,54 @@ def case(seed, cube, sphere, cube2):
     return kind, parts
 
 
+def rotation(rng):
+    a = rng.random(3) * 2 * np.pi
+    rx = np.array([[1, 0, 0], [0, np.cos(a[0]), -np.sin(a[0])], [0, np.sin(a[0]), np.cos(a[0])]])
+    ry = np.array([[np.cos(a[1]), 0, np.sin(a[1])], [0, 1, 0], [-np.sin(a[1]), 0, np.cos(a[1])]])
+    rz = np.array([[np.cos(a[2]), -np.sin(a[2]), 0], [np.sin(a[2]), np.cos(a[2]), 0], [0, 0, 1]])
+    return rz @ ry @ rx
+
+
+def nonconvex_case(seed, sphere, torus):
+    rng = np.random.default_rng(seed)
+    kind = seed % 3
+
+    def blob(scale):
+        v, f = sphere
+        return v * (1 + rng.uniform(-0.3, 0.3, (len(v), 1))) * 2 * scale, f
+
+    parts = []
+    if kind == 2:  # a blob and copies of it scaled about one of its vertices or shifted
+        v, f = blob(rng.choice([0.5, 1.0]))
+        v = v + np.round(rng.random(3), 1)
+        parts.append((v, f))
+        for _ in range(rng.integers(1, 4)):
+            if rng.random() < 0.5:
+                p = v[rng.integers(len(v))]
+                parts.append(((v - p) * rng.choice([0.5, 0.75, 1.5]) + p, f))
+            else:
+                parts.append((v + rng.integers(-2, 3, 3) * 0.125, f))
+        return kind, parts
+    for _ in range(rng.integers(2, 6)):
+        if kind == 0:
+            v, f = blob(rng.uniform(0.3, 0.8))
+            parts.append((v + np.round(rng.random(3) * 1.5, 1), f))
+        else:
+            v, f = torus
+            parts.append((v * rng.uniform(0.4, 1.0) @ rotation(rng).T + rng.random(3) * 1.5, f))
+    return kind, parts
+
+
 def main():
     first, last = int(sys.argv[1]), int(sys.argv[2])
+    nonconvex = "--nonconvex" in sys.argv[3:]
     cube, sphere, cube2 = shapes()
+    ms = pymeshlab.MeshSet()
+    ms.create_torus(hradius=0.6, vradius=0.2, hsubdiv=24, vsubdiv=12)
+    torus = (ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix())
     bad = 0
     for seed in range(first, last):
-        kind, parts = case(seed, cube, sphere, cube2)
+        kind, parts = nonconvex_case(seed, sphere, torus) if nonconvex else case(seed, cube, sphere, cube2)
         ref = reference(parts)
         for sliver, tol in ((0.0, 1e-9), (10.0, 1.01e-6)):
             ms = pymeshlab.MeshSet()

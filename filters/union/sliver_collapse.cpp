@@ -669,6 +669,10 @@ bool Collapser::try_remove_vertex(int v) {
     for (int i = 0; i < k; ++i)
       if (line_.count(ekey(v, ring[i]))) forced[n++] = i;
     if (n != 2 || line_.count(ekey(ring[forced[0]], ring[forced[1]]))) return false;
+    // The line's new edge is kept without the link triangulation's test that a diagonal is
+    // not an edge already (elsewhere in the surface: it would get four faces).
+    const int gap = forced[1] - forced[0];
+    if (gap != 1 && gap != k - 1 && edge_exists(ring[forced[0]], ring[forced[1]])) return false;
   }
   if (removal_still_refused(v, ring)) return false;
   auto refuse = [&] {

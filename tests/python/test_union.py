@@ -6,6 +6,7 @@ per edge), no self-intersections (MeshLab's own selection selects 0 faces), and 
 volume equal to manifold3d's union of the same bodies.
 """
 import math
+import pathlib
 from fractions import Fraction
 
 import numpy as np
@@ -533,6 +534,29 @@ def test_bug_start_face_chosen_from_rounded_normals_at_a_shared_pole():
     # cross (docs/union.md, "Limits"). The sliver step, whose moves are checked exactly,
     # is not asked to repair that.
     assert self_intersecting_faces(ms.current_mesh()) <= 8  # (MeshLab's flags vary by run)
+
+
+def _noisy_blob():
+    """tests/data/noisy_blob.obj read exactly (repr doubles), without an importer between."""
+    path = pathlib.Path(__file__).resolve().parents[1] / "data" / "noisy_blob.obj"
+    rows = [line.split() for line in path.read_text().splitlines()]
+    v = np.array([[float(x) for x in r[1:]] for r in rows if r and r[0] == "v"])
+    f = np.array([[int(x) - 1 for x in r[1:]] for r in rows if r and r[0] == "f"], dtype=np.int32)
+    return v, f
+
+
+def test_bug_vertex_removal_kept_a_line_edge_that_already_existed():
+    # Found by fuzzing non-convex bodies (fuzz_union.py --nonconvex, seed 698): a noisy
+    # blob and its copy shifted by (1/8, 0, 1/4). The sliver step removed a vertex on an
+    # intersection line; the line's new edge between its two neighbours was kept without
+    # the test that it is not an edge already, and got four faces (non-manifold output).
+    v, f = _noisy_blob()
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(v, f))
+    ms.add_mesh(pymeshlab.Mesh(v + np.array([0.125, 0.0, 0.25]), f))
+    ref = reference([ms.mesh(0), ms.mesh(1)])
+    unite(ms, bodies=LAYERS)
+    assert check_union(ms, 2) == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL)
 
 
 @pytest.mark.parametrize("sliver_angle,rtol", [(0.0, EXACT_VOLUME_RTOL), (10.0, IMPROVED_VOLUME_RTOL)])
