@@ -119,14 +119,15 @@ private:
   bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
   bool try_flip(int f, int z);      // flips side z of face f
   /// Who may give back the volume a flip of (u, v) to (c, d) changes, in the order
-  /// tried: the four corners, then the free vertices one ring further (after the flip).
+  /// tried: the four corners, then the free vertices one ring further (after the flip),
+  /// each once (a vertex that cannot give the volume back fails the same way again).
   void flip_compensators(int u, int v, int c, int d, std::vector<int>& out) const {
     out = {c, d, u, v};
     for (int x : {c, d})
       for (int h : vf_[x])
         if (alive_[h])
           for (int y : r_.faces[h])
-            if (y != u && y != v && y != c && y != d) out.push_back(y);
+            if (std::find(out.begin(), out.end(), y) == out.end()) out.push_back(y);
   }
   /// Where the flip of (u, v) in faces f = (u, v, c) and g = (v, u, d) changes the star
   /// lists, so that unflip() restores them exactly.
