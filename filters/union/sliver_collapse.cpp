@@ -981,8 +981,11 @@ void Collapser::run_passes(double threshold) {
       bool ok = false;
       int best_v = -1, best_w = -1;
       double best_dv = 1e300;
-      for (const auto& [len, z] : edges)
-        for (int dir = 0; dir < 2; ++dir) {
+      // (A collapse that changes and sweeps no volume, flat stars on CAD plates, cannot be
+      // beaten: the rest are not evaluated.)
+      for (int e = 0; e < 3 && best_dv > 0; ++e)
+        for (int dir = 0; dir < 2 && best_dv > 0; ++dir) {
+          const int z = edges[e].second;
           const int a = t[(z + dir) % 3], b = t[(z + 1 - dir) % 3];
           double dv = 0;
           if (try_collapse(a, b, false, &dv) && dv < best_dv) { best_dv = dv; best_v = a; best_w = b; }
