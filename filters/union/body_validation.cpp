@@ -31,6 +31,22 @@ bool validate_body(Body& b, size_t i, bool self_intersections) {
   for (const auto& v : b.vertices)
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
       throw InvalidInput(name + " has NaN or infinite vertex coordinates: fix or delete those vertices");
+  // The floating-point filters multiply up to six coordinates (differences) and would
+  // overflow or underflow beyond this range (measured: 1e75 fails, 1e-100 leaves the
+  // slivers untreated); the exact fallback cannot help where the filter gives NaN.
+  constexpr double kLargest = 1e50, kSmallestExtent = 1e-50;
+  std::array<double, 3> lo = b.vertices[0], hi = b.vertices[0];
+  for (const auto& v : b.vertices)
+    for (size_t k = 0; k < 3; ++k) {
+      if (std::fabs(v[k]) > kLargest)
+        throw InvalidInput(name + " has vertex coordinates beyond 1e50 in magnitude: scale the model down first "
+                                  "(Normals, Curvatures and Orientation > Transform: Scale, Normalize)");
+      lo[k] = std::min(lo[k], v[k]);
+      hi[k] = std::max(hi[k], v[k]);
+    }
+  if (std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) < kSmallestExtent)
+    throw InvalidInput(name + " is smaller than 1e-50 across: scale the model up first "
+                              "(Normals, Curvatures and Orientation > Transform: Scale, Normalize)");
   const int nv = int(b.vertices.size());
   for (const auto& f : b.faces) {
     for (int z = 0; z < 3; ++z)

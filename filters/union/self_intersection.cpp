@@ -67,10 +67,10 @@ bool star_shaped(const Body& b, const EdgeTable& edges, bool outward) {
   }
   for (int f = 1; f < nf; ++f)
     if (pieces.find(f) != pieces.find(0)) return false;
-  V3 c{0, 0, 0};
+  V3 c{0, 0, 0};  // (each term divided first: no overflow near the largest doubles)
+  const double n = double(b.vertices.size());
   for (const V3& p : b.vertices)
-    for (size_t k = 0; k < 3; ++k) c[k] += p[k];
-  for (size_t k = 0; k < 3; ++k) c[k] /= double(b.vertices.size());
+    for (size_t k = 0; k < 3; ++k) c[k] += p[k] / n;
   const int inner = outward ? -1 : 1;  // orient3d's sign for a point on a face's inner side
   std::vector<double> turn(b.vertices.size(), 0);
   for (const auto& t : b.faces) {
@@ -95,7 +95,7 @@ bool star_shaped(const Body& b, const EdgeTable& edges, bool outward) {
   // Once around is 2 pi, twice or more at least 4 pi (each face counts positively: it
   // faces away from c), so rounding cannot blur the two.
   for (double a : turn)
-    if (a > 3 * 3.14159265358979323846) return false;
+    if (!(a < 3 * 3.14159265358979323846)) return false;  // (NaN: overflow, not known)
   return true;
 }
 

@@ -344,6 +344,29 @@ def test_nan_body_is_named():
         unite(ms, bodies=LAYERS)
 
 
+@pytest.mark.parametrize("scale,message", [(1e75, "beyond 1e50"), (1e-100, "smaller than 1e-50"), (1e40, None),
+                                           (1e-40, None)])
+def test_coordinates_beyond_the_filters_range_are_refused(scale, message):
+    # Found in stop 20: the blob and its shifted copy scaled by 1e75 failed with the fill's
+    # misleading "coincident faces" message (the filters' products overflow to NaN); scaled
+    # by 1e-100 the sliver step silently did nothing. Such scales are now refused by name;
+    # within the range the union is the same up to scale.
+    v, f = _noisy_blob()
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(v * scale, f))
+    ms.add_mesh(pymeshlab.Mesh((v + np.array([0.125, 0.0, 0.25])) * scale, f))
+    if message:
+        with raises_on(ms, r"body 0 .*" + message):
+            unite(ms, bodies=LAYERS)
+        return
+    ref = reference([ms.mesh(0), ms.mesh(1)])
+    r = unite(ms, bodies=LAYERS)
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    assert ms.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL)
+    assert r["min_angle"] > 1.0  # the sliver step worked (2.7 degrees at scale 1)
+
+
 def test_layer_without_faces_is_named():
     ms = pymeshlab.MeshSet()
     ms.create_cube()

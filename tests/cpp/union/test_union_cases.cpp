@@ -168,6 +168,10 @@ TEST(UnionBadInput, MessagesNameTheBody) {
   Body nan = cube_body(1, 0, 0, 0);
   nan.vertices[0][1] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(compute_union({nan}), InvalidInput);
+  // Beyond the floating-point filters' range: refused, not a misleading failure later.
+  EXPECT_THROW(compute_union({cube_body(1, 0, 0, 0, 1e60)}), InvalidInput);
+  EXPECT_THROW(compute_union({cube_body(1, 0, 0, 0, 1e-60)}), InvalidInput);
+  EXPECT_NO_THROW(compute_union({cube_body(1, 0, 0, 0, 1e40), cube_body(1, 0.5e40, 0, 0, 1e40)}));
   EXPECT_THROW(compute_union({}), InvalidInput);
   EXPECT_THROW(compute_union({Body{}}), InvalidInput);
 }
