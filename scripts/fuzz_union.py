@@ -9,7 +9,9 @@ cubes. With --nonconvex the bodies are not convex: spheres with radial noise (bl
 tori (not star-shaped), and a blob with copies of itself scaled about one of its vertices or
 shifted on a grid (coincident and nearly coincident faces). Each is united with the sliver step off and on and must give no error, a closed two-
 manifold surface and manifold3d's volume (cavities filled): 1e-9 relative without the sliver
-step, its volume budget (1e-6) with it. Prints the failing seeds; not part of the test suite.
+step, its volume budget (1e-6) with it. Where only the volume differs, MeshLab's union (libigl on
+CGAL's exact kernel) arbitrates: manifold3d perturbs coincident geometry symbolically. Prints the
+failing seeds; not part of the test suite.
 """
 import sys
 
@@ -25,6 +27,18 @@ def reference(parts):
                                                 tri_verts=np.ascontiguousarray(f, dtype=np.uint64))) for v, f in parts]
     union = manifold3d.Manifold.batch_boolean(ps, manifold3d.OpType.Add)
     return sum(c.volume() for c in union.decompose() if c.volume() > 0)
+
+
+def meshlab_union_volume(parts):
+    ms = pymeshlab.MeshSet()
+    for v, f in parts:
+        ms.add_mesh(pymeshlab.Mesh(v, f))
+    current = 0
+    for i in range(1, len(parts)):
+        ms.generate_boolean_union(first_mesh=current, second_mesh=i)
+        current = ms.current_mesh_id()
+    ms.set_current_mesh(current)
+    return ms.get_geometric_measures()["mesh_volume"]
 
 
 def shapes():
@@ -108,7 +122,7 @@ def main():
     ms = pymeshlab.MeshSet()
     ms.create_torus(hradius=0.6, vradius=0.2, hsubdiv=24, vsubdiv=12)
     torus = (ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix())
-    bad = 0
+    bad = disagreements = 0
     for seed in range(first, last):
         kind, parts = nonconvex_case(seed, sphere, torus) if nonconvex else case(seed, cube, sphere, cube2)
         ref = reference(parts)
@@ -125,11 +139,20 @@ def main():
             topo = ms.get_topological_measures()
             volume = ms.get_geometric_measures().get("mesh_volume", float("nan"))
             err = abs(volume / ref - 1)
+            if not err <= tol and topo["is_mesh_two_manifold"] and not topo["boundary_edges"]:
+                # manifold3d perturbs coincident geometry symbolically; MeshLab's union
+                # (libigl on CGAL's exact kernel) arbitrates.
+                exact = meshlab_union_volume(parts)
+                if abs(volume / exact - 1) <= tol:
+                    print(f"seed {seed} kind {kind} sliver {sliver}: manifold3d's volume differs by "
+                          f"{volume / ref - 1:.2e}; MeshLab's exact union agrees ({volume / exact - 1:.1e})")
+                    disagreements += 1
+                    continue
             if topo["boundary_edges"] or not topo["is_mesh_two_manifold"] or not err <= tol:
                 print(f"seed {seed} kind {kind} sliver {sliver}: boundary {topo['boundary_edges']} "
                       f"manifold {topo['is_mesh_two_manifold']} volume error {err:.2e}")
                 bad += 1
-    print(f"{last - first} seeds, {bad} failures")
+    print(f"{last - first} seeds, {bad} failures, {disagreements} where only manifold3d differs")
     return 1 if bad else 0
 
 
