@@ -7,10 +7,11 @@ touching), spheres on a 0.1 grid (identical copies, touching poles), subdivided 
 spheres on a quarter grid, spheres of several radii sharing centres and poles, randomly rotated
 cubes. With --nonconvex the bodies are not convex: spheres with radial noise (blobs), rotated
 tori (not star-shaped), and a blob with copies of itself scaled about one of its vertices or
-shifted on a grid (coincident and nearly coincident faces). Each is united with the sliver step off and on and must give no error, a closed two-
-manifold surface and manifold3d's volume (cavities filled): 1e-9 relative without the sliver
-step, its volume budget (1e-6) with it. Where only the volume differs, MeshLab's union (libigl on
-CGAL's exact kernel) arbitrates: manifold3d perturbs coincident geometry symbolically. Prints the
+shifted on a grid (coincident and nearly coincident faces).
+Each is united with the sliver step off and on and must give no error, a closed two-manifold
+surface and manifold3d's volume (cavities filled): 1e-9 relative without the sliver step, its
+volume budget (1e-6) with it. Where only the volume differs, MeshLab's union (libigl on CGAL's
+exact kernel) arbitrates: manifold3d perturbs coincident geometry symbolically. Prints the
 failing seeds; not part of the test suite.
 """
 import sys
