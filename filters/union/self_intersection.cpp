@@ -68,9 +68,9 @@ bool star_shaped(const Body& b, const EdgeTable& edges, bool outward) {
   for (int f = 1; f < nf; ++f)
     if (pieces.find(f) != pieces.find(0)) return false;
   V3 c{0, 0, 0};  // (each term divided first: no overflow near the largest doubles)
-  const double n = double(b.vertices.size());
+  const double count = double(b.vertices.size());
   for (const V3& p : b.vertices)
-    for (size_t k = 0; k < 3; ++k) c[k] += p[k] / n;
+    for (size_t k = 0; k < 3; ++k) c[k] += p[k] / count;
   const int inner = outward ? -1 : 1;  // orient3d's sign for a point on a face's inner side
   std::vector<double> turn(b.vertices.size(), 0);
   for (const auto& t : b.faces) {
