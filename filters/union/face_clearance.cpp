@@ -4,15 +4,11 @@
 #include <cmath>
 
 #include "union/exact.h"
+#include "union/vec3.h"
 
 namespace mr::surface_union {
 
 namespace {
-
-V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 /// Closed segment (p, q) against the closed triangle (a, b, c) in their common plane,
 /// seen across the triangle's largest normal component. Each 2D orientation is taken

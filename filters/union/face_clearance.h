@@ -5,14 +5,13 @@
 #pragma once
 
 #include "common/flat_index_map.h"
+#include "union/vec3.h"
 
 #include <array>
 #include <cstdint>
 #include <vector>
 
 namespace mr::surface_union {
-
-using V3 = std::array<double, 3>;
 
 /// Triangles a and b (vertex ids and positions) intersect other than along what they
 /// share; corners are shared when their ids or their positions are equal (shells that

@@ -1,6 +1,7 @@
 #include "union/link_triangulation.h"
 
 #include "union/triangle_angles.h"
+#include "union/vec3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +9,6 @@
 namespace mr::surface_union {
 
 namespace {
-
-V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot3(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross3(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 // Diagonals (i, j) and (a, b) of one polygon cross when exactly one of a, b lies strictly
 // between i and j.
@@ -59,8 +54,8 @@ bool best_polygon_triangulation(const std::vector<V3>& ring, const V3& up, const
         // and on the bound (branch and bound: the same result, fewer atan2).
         const double sides = std::min(left, right);
         if (left < 0 || right < 0 || sides <= best[at(i, j)] || sides <= must_exceed) continue;
-        const V3 n = cross3(sub3(ring[m], ring[i]), sub3(ring[j], ring[i]));
-        if (!(dot3(n, up) > 0)) continue;
+        const V3 n = cross(sub3(ring[m], ring[i]), sub3(ring[j], ring[i]));
+        if (!(dot(n, up) > 0)) continue;
         const double q = std::min(smallest_angle(ring[i], ring[m], ring[j]), sides);
         if (q > best[at(i, j)] && q > must_exceed) {
           best[at(i, j)] = q;

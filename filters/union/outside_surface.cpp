@@ -2,6 +2,7 @@
 
 #include "common/union_find.h"
 #include "union/exact.h"
+#include "union/vec3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,13 +12,6 @@
 namespace mr::surface_union {
 
 namespace {
-
-using V3 = std::array<double, 3>;
-V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 /// Generalized winding number of point p with respect to the faces of one body; 0.5
 /// (undecided) when p lies exactly on one of the faces.

@@ -4,6 +4,7 @@
 #include "union/exact.h"
 #include "union/face_clearance.h"
 #include "union/triangle_angles.h"
+#include "union/vec3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,12 +13,6 @@
 namespace mr::surface_union {
 
 namespace {
-
-V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 /// Where the surface is locally convex (per vertex). A vertex is when every edge at it is
 /// convex or flat (exact) and its face angles sum to at most 2 pi (doubles: within 1e-9
@@ -80,10 +75,10 @@ bool star_shaped(const Body& b, const EdgeTable& edges, bool outward) {
     // and (c, v, b) about the ray through v.
     for (size_t z = 0; z < 3; ++z) {
       const V3& v = b.vertices[size_t(t[z])];
-      const V3 axis = sub(v, c);
+      const V3 axis = sub3(v, c);
       const double aa = dot(axis, axis);
       auto across = [&](const V3& x) {
-        const V3 d = sub(x, v);
+        const V3 d = sub3(x, v);
         const double s = dot(d, axis) / aa;
         return V3{d[0] - s * axis[0], d[1] - s * axis[1], d[2] - s * axis[2]};
       };

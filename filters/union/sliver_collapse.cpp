@@ -10,6 +10,7 @@
 #include "union/exact.h"
 #include "union/face_clearance.h"
 #include "union/same_cover.h"
+#include "union/vec3.h"
 
 namespace mr::surface_union {
 
@@ -36,12 +37,6 @@ constexpr double kCreaseCos = 0.866;
 /// out-of-line call, run a few hundred thousand times by the collapse candidates.
 inline bool has_corner(const std::array<int, 3>& t, int x) { return t[0] == x || t[1] == x || t[2] == x; }
 
-V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const V3& a) { return std::sqrt(dot(a, a)); }
 
 class Collapser {
 public:

@@ -1,6 +1,7 @@
 #include "union/triangle_intersection.h"
 
 #include "common/parallel_for.h"
+#include "union/vec3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -53,14 +54,6 @@ void add_result(FaceConstraints& c, int p, int q) {
 
 }  // namespace
 
-namespace {
-
-using V3 = std::array<double, 3>;
-V3 cross3(const V3& a, const V3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
-double dot3(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-}  // namespace
-
 // A floating-point filter that only answers "certainly disjoint": the two sections
 // are computed in doubles with an error bound, and the pair is rejected when their
 // projections on the common line are apart by more than that bound. Anything
@@ -71,11 +64,11 @@ bool PairIntersector::sections_surely_apart(int f, const int* st, int g, const i
   const auto& X = soup_.face[g];
   auto normal = [&](const std::array<int, 3>& F) {
     const V3 &a = soup_.vertex[F[0]], &b = soup_.vertex[F[1]], &c = soup_.vertex[F[2]];
-    return cross3({b[0] - a[0], b[1] - a[1], b[2] - a[2]}, {c[0] - a[0], c[1] - a[1], c[2] - a[2]});
+    return cross({b[0] - a[0], b[1] - a[1], b[2] - a[2]}, {c[0] - a[0], c[1] - a[1], c[2] - a[2]});
   };
   const V3 nt = normal(T), nx = normal(X);
-  const V3 d = cross3(nt, nx);
-  const double ld = std::sqrt(dot3(d, d)), lt = std::sqrt(dot3(nt, nt)), lx = std::sqrt(dot3(nx, nx));
+  const V3 d = cross(nt, nx);
+  const double ld = std::sqrt(dot(d, d)), lt = std::sqrt(dot(nt, nt)), lx = std::sqrt(dot(nx, nx));
   if (!(ld > 1e-6 * lt * lx)) return false;  // nearly parallel planes: decide exactly
   double lo[2], hi[2];
   const std::array<int, 3>* faces[2] = {&T, &X};
@@ -90,9 +83,9 @@ bool PairIntersector::sections_surely_apart(int f, const int* st, int g, const i
     for (int i = 0; i < 3; ++i) {
       const V3& p = soup_.vertex[F[i]];
       const V3 r{p[0] - q0[0], p[1] - q0[1], p[2] - q0[2]};
-      o[i] = dot3(r, nq);
+      o[i] = dot(r, nq);
       err[i] = 1e-13 * (std::fabs(r[0] * nq[0]) + std::fabs(r[1] * nq[1]) + std::fabs(r[2] * nq[2]) +
-                        std::sqrt(dot3(r, r)) * std::sqrt(dot3(nq, nq)));
+                        std::sqrt(dot(r, r)) * std::sqrt(dot(nq, nq)));
     }
     lo[k] = 1e300;
     hi[k] = -1e300;
@@ -100,7 +93,7 @@ bool PairIntersector::sections_surely_apart(int f, const int* st, int g, const i
     for (int i = 0; i < 3; ++i) {
       const V3& p = soup_.vertex[F[i]];
       if (signs[k][i] == 0) {
-        const double x = dot3(p, d);
+        const double x = dot(p, d);
         lo[k] = std::min(lo[k], x);
         hi[k] = std::max(hi[k], x);
       }
@@ -111,10 +104,10 @@ bool PairIntersector::sections_surely_apart(int f, const int* st, int g, const i
       const V3& q = soup_.vertex[F[j]];
       const double t = o[i] / den;
       const V3 e{q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-      const double x = dot3(p, d) + t * dot3(e, d);
+      const double x = dot(p, d) + t * dot(e, d);
       lo[k] = std::min(lo[k], x);
       hi[k] = std::max(hi[k], x);
-      slack = std::max(slack, 1e-5 * std::sqrt(dot3(e, e)) * ld + 1e-12 * (std::fabs(dot3(p, d)) + std::fabs(dot3(e, d))));
+      slack = std::max(slack, 1e-5 * std::sqrt(dot(e, e)) * ld + 1e-12 * (std::fabs(dot(p, d)) + std::fabs(dot(e, d))));
     }
     lo[k] -= slack + 1e-12 * std::fabs(lo[k]);
     hi[k] += slack + 1e-12 * std::fabs(hi[k]);
