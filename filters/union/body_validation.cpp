@@ -28,9 +28,6 @@ bool degenerate(const Body& b, const std::array<int, 3>& f) {
 bool validate_body(Body& b, size_t i, bool self_intersections) {
   const std::string name = label(b, i);
   if (b.vertices.empty() || b.faces.empty()) throw InvalidInput(name + " is empty: it has no faces");
-  for (const auto& v : b.vertices)
-    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
-      throw InvalidInput(name + " has NaN or infinite vertex coordinates: fix or delete those vertices");
   // The floating-point filters multiply up to six coordinates (differences) and would
   // overflow or underflow beyond this range (measured: 1e75 fails, 1e-100 leaves the
   // slivers untreated); the exact fallback cannot help where the filter gives NaN.
@@ -38,6 +35,8 @@ bool validate_body(Body& b, size_t i, bool self_intersections) {
   std::array<double, 3> lo = b.vertices[0], hi = b.vertices[0];
   for (const auto& v : b.vertices)
     for (size_t k = 0; k < 3; ++k) {
+      if (!std::isfinite(v[k]))
+        throw InvalidInput(name + " has NaN or infinite vertex coordinates: fix or delete those vertices");
       if (std::fabs(v[k]) > kLargest)
         throw InvalidInput(name + " has vertex coordinates beyond 1e50 in magnitude: scale the model down first "
                                   "(Normals, Curvatures and Orientation > Transform: Scale, Normalize)");

@@ -356,8 +356,12 @@ def test_coordinates_beyond_the_filters_range_are_refused(scale, message):
     ms.add_mesh(pymeshlab.Mesh(v * scale, f))
     ms.add_mesh(pymeshlab.Mesh((v + np.array([0.125, 0.0, 0.25])) * scale, f))
     if message:
+        before = [snapshot(ms.mesh(i)) for i in (0, 1)]
         with raises_on(ms, r"body 0 .*" + message):
             unite(ms, bodies=LAYERS)
+        assert ms.mesh_number() == 2
+        for i in (0, 1):
+            assert_unchanged(before[i], ms.mesh(i))
         return
     ref = reference([ms.mesh(0), ms.mesh(1)])
     r = unite(ms, bodies=LAYERS)
