@@ -154,6 +154,27 @@ void resolve_plane_sides(const V3 A[3], const V3 B[3], int sides[3]) {
     if (sides[i] == kUnknown) sides[i] = orient3d(A[0].data(), A[1].data(), A[2].data(), B[i].data());
 }
 
+/// F and G, sharing no corner, each with one corner strictly on one side of the other's
+/// plane and two strictly on the other (sides known exactly: sf are F's corners of G's
+/// plane, sg G's of F's). Each then cuts the line common to the planes in a segment,
+/// and they meet exactly when the segments overlap: two orientations decide it
+/// (Devillers and Guigue 2002). p1 and p2 are the lone corners, the others taken in the
+/// face's turning order; swapping a face's other two corners turns its plane over, so
+/// that both lone corners lie on the positive side of the other plane. Along the common
+/// line the segments are then [q1 r1 crossing .. p1 q1 crossing] and [p2 q2 crossing ..
+/// p2 r2 crossing], and orient3d(p1, q1, p2, q2) and orient3d(p1, r1, p2, r2) are the
+/// signs of the differences of those ends.
+bool straddling_triangles_meet(const V3 F[3], const V3 G[3], const int sf[3], const int sg[3]) {
+  const int i1 = sf[0] == sf[1] ? 2 : sf[0] == sf[2] ? 1 : 0;
+  const int i2 = sg[0] == sg[1] ? 2 : sg[0] == sg[2] ? 1 : 0;
+  const V3 *p1 = &F[i1], *q1 = &F[(i1 + 1) % 3], *r1 = &F[(i1 + 2) % 3];
+  const V3 *p2 = &G[i2], *q2 = &G[(i2 + 1) % 3], *r2 = &G[(i2 + 2) % 3];
+  if (sf[i1] < 0) std::swap(q2, r2);
+  if (sg[i2] < 0) std::swap(q1, r1);
+  return orient3d(p1->data(), q1->data(), p2->data(), q2->data()) <= 0 &&
+         orient3d(p1->data(), r1->data(), r2->data(), p2->data()) <= 0;
+}
+
 /// All of B but the shared corner strictly on one side of A's plane (sides known).
 bool strictly_one_side(const int sides[3], int shared) {
   int pos = 0, neg = 0;
@@ -180,6 +201,9 @@ bool triangles_meet(const std::array<int, 3>& a, const V3 F[3], const std::array
     sure[k] = filtered_plane_sides(k == 0 ? F : G, k == 0 ? G : F, in_plane, sides[k]);
     if (sure[k] && strictly_one_side(sides[k], shared)) return false;
   }
+  // Each strictly across the other's plane (sides certain, none zero when no corner
+  // is shared): two more orientations decide.
+  if (shared == 0 && sure[0] && sure[1]) return straddling_triangles_meet(F, G, sides[1], sides[0]);
   // Nearly coplanar neighbours (pieces of one input face, slivers): the projection
   // decides most of them on the doubles, cheaper than exact plane sides.
   const int kf = largest_normal_axis(F), kg = largest_normal_axis(G);

@@ -230,6 +230,11 @@ private:
     new_pos_.push_back(q);
   }
   bool stays_clear();
+  /// Proposed face i meets the coordinate plane x_k = c only in an old edge or an old
+  /// corner of its own (unmoved, the edge there before the move), its other corners
+  /// strictly on one side, or not at all. Whatever it touches of a face in that plane,
+  /// the old faces along that edge or at that corner touched already: no new contact.
+  bool meets_axis_plane_only_where_it_was(size_t i, int k, double c) const;
   /// The proposed move leaves the surface covering the same points (same_cover: a flat
   /// star filled again, a vertex slid along a straight crease of CAD plates), so it
   /// cannot meet anything new, unless a vertex of another sheet sits exactly where
@@ -305,6 +310,7 @@ bool Collapser::stays_clear() {
     // that share a corner with the move.
     const auto& t = r_.faces[g];
     const V3 gq[3] = {P(t[0]), P(t[1]), P(t[2])};
+    const int kg = axis_plane(gq);  // CAD plates: most faces nearby lie in such planes
     V3 glo = gq[0], ghi = gq[0];
     for (int z = 1; z < 3; ++z)
       for (int k = 0; k < 3; ++k) { glo[k] = std::min(glo[k], gq[z][k]); ghi[k] = std::max(ghi[k], gq[z][k]); }
@@ -312,6 +318,7 @@ bool Collapser::stays_clear() {
       bool apart = false;
       for (int k = 0; k < 3; ++k) apart |= ghi[k] < boxes[i][0][k] || boxes[i][1][k] < glo[k];
       if (apart) continue;
+      if (kg >= 0 && meets_axis_plane_only_where_it_was(i, kg, gq[0][kg])) continue;
       if (triangles_meet(new_ids_[i], new_pos_[i].data(), t, gq)) return false;
     }
   }
@@ -319,6 +326,21 @@ bool Collapser::stays_clear() {
     for (size_t j = 0; j < i; ++j)
       if (triangles_meet(new_ids_[i], new_pos_[i].data(), new_ids_[j], new_pos_[j].data())) return false;
   return true;
+}
+
+bool Collapser::meets_axis_plane_only_where_it_was(size_t i, int k, double c) const {
+  const auto& t = new_ids_[i];
+  const auto& q = new_pos_[i];
+  int on[3], count = 0, above = 0, below = 0;
+  for (int z = 0; z < 3; ++z) {
+    if (q[z][k] == c) on[count++] = z;
+    else if (q[z][k] > c) ++above;
+    else ++below;
+  }
+  if (count == 3 || (above && below)) return false;
+  for (int m = 0; m < count; ++m)
+    if (!(q[size_t(on[m])] == P(t[size_t(on[m])]))) return false;  // the moved corner
+  return count < 2 || edge_exists(t[size_t(on[0])], t[size_t(on[1])]);
 }
 
 bool Collapser::cover_unchanged(int gone, int gone2) {

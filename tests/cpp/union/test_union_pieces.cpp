@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <random>
 #include <thread>
 #include <vector>
 
@@ -375,6 +376,54 @@ TEST(UnionClearance, TrianglesMeetOnlyBeyondWhatTheyShare) {
   // Neighbours across an edge never meet elsewhere.
   const V3 N[3] = {{1, 0, 0}, {0, 0, 0}, {0.5, -1, 0.3}};
   EXPECT_FALSE(triangles_meet(f, F, {1, 0, 13}, N));
+}
+
+// Faces each strictly across the other's plane take a shortcut (two orientations along
+// the planes' common line); it must agree with testing every side against the other
+// face. On a small integer grid many sides pass exactly through a corner or a side.
+TEST(UnionClearance, TrianglesAcrossEachOthersPlaneMeetAsTheirSidesTell) {
+  auto side_meets = [](const V3& p, const V3& q, const V3 T[3]) {  // p, q strictly apart
+    const int s0 = orient3d(p.data(), q.data(), T[0].data(), T[1].data());
+    const int s1 = orient3d(p.data(), q.data(), T[1].data(), T[2].data());
+    const int s2 = orient3d(p.data(), q.data(), T[2].data(), T[0].data());
+    return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
+  };
+  auto crosses = [&](const V3 A[3], const V3 B[3]) {  // a side of A through B
+    int s[3];
+    for (int i = 0; i < 3; ++i) s[i] = orient3d(B[0].data(), B[1].data(), B[2].data(), A[i].data());
+    for (int i = 0; i < 3; ++i)
+      if (s[i] * s[(i + 1) % 3] < 0 && side_meets(A[i], A[(i + 1) % 3], B)) return true;
+    return false;
+  };
+  std::mt19937 rng(7);
+  int meet = 0, apart = 0;
+  for (int round = 0; round < 40000; ++round) {
+    const bool grid = round % 2 == 0;
+    std::uniform_int_distribution<int> cell(0, 3);
+    std::uniform_real_distribution<double> real(-1, 1);
+    V3 F[3], G[3];
+    for (V3* T : {F, G})
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) T[i][k] = grid ? double(cell(rng)) : real(rng);
+    bool straddle = true;
+    for (int side = 0; side < 2; ++side) {
+      const V3* A = side == 0 ? F : G;
+      const V3* B = side == 0 ? G : F;
+      int pos = 0, neg = 0;
+      for (int i = 0; i < 3; ++i) {
+        const int o = orient3d(A[0].data(), A[1].data(), A[2].data(), B[i].data());
+        pos += o > 0;
+        neg += o < 0;
+      }
+      straddle = straddle && pos > 0 && neg > 0 && pos + neg == 3;
+    }
+    if (!straddle) continue;
+    const bool expected = crosses(F, G) || crosses(G, F);
+    ASSERT_EQ(triangles_meet({0, 1, 2}, F, {3, 4, 5}, G), expected) << "round " << round;
+    ++(expected ? meet : apart);
+  }
+  EXPECT_GT(meet, 1000);
+  EXPECT_GT(apart, 1000);
 }
 
 TEST(UnionClearance, FlatConvexQuadOnlyWhenExactlyFlatAndConvex) {
