@@ -249,6 +249,12 @@ private:
   }
   // Reused by try_collapse (called for every candidate edge): no allocation per call.
   std::vector<int> scratch_fv_, scratch_fw_, scratch_nv_, scratch_nw_, scratch_fx_;
+  std::vector<int> removal_faces_, removal_ring_;  // try_remove_vertex's
+  std::vector<int> slide_faces_, slide_ring_;      // try_slide_on_line's
+  std::vector<std::pair<int, char>> slide_marks_;
+  std::vector<std::array<int, 2>> removal_sides_;
+  std::vector<V3> removal_at_;
+  std::vector<std::array<int, 3>> removal_tris_;
   std::vector<int> ring_mark_;  // per vertex: the stamp of the last ring it was put in
   int ring_stamp_ = 0;
 
@@ -657,18 +663,21 @@ bool Collapser::try_junction_slide(int c) {
 bool Collapser::try_remove_vertex(int v) {
   const int ld = line_degree_[v];
   if (ld != 0 && ld != 2) return false;
-  std::vector<int> fv;
+  // Scratch members: this runs for every sliver corner, pass after pass.
+  std::vector<int>& fv = removal_faces_;
   live_faces(v, fv);
   const int k = int(fv.size());
   if (k < 3 || k > kMaxRemovedValence) return false;
   // The link in order: each face (v, a, b) gives the link side a -> b.
-  std::vector<std::array<int, 2>> sides;
+  std::vector<std::array<int, 2>>& sides = removal_sides_;
+  sides.clear();
   for (int f : fv) {
     const auto& t = r_.faces[f];
     for (int z = 0; z < 3; ++z)
       if (t[z] == v) sides.push_back({t[(z + 1) % 3], t[(z + 2) % 3]});
   }
-  std::vector<int> ring{sides[0][0]};
+  std::vector<int>& ring = removal_ring_;
+  ring.assign(1, sides[0][0]);
   for (int step = 0; step < k; ++step) {
     int next = -1;
     for (const auto& sd : sides)
@@ -703,7 +712,8 @@ bool Collapser::try_remove_vertex(int v) {
     const V3 n = cross(sub3(P(t[1]), P(t[0])), sub3(P(t[2]), P(t[0])));
     for (int c = 0; c < 3; ++c) up[c] += n[c];
   }
-  std::vector<V3> at(k);
+  std::vector<V3>& at = removal_at_;
+  at.resize(size_t(k));
   for (int i = 0; i < k; ++i) at[i] = P(ring[i]);
   double before = 1e300;
   bool any_cut = false;
@@ -711,7 +721,8 @@ bool Collapser::try_remove_vertex(int v) {
     before = std::min(before, min_angle(f));
     any_cut |= cut_[f] != 0;
   }
-  std::vector<std::array<int, 3>> tris;
+  std::vector<std::array<int, 3>>& tris = removal_tris_;
+  tris.clear();
   double after = 0;
   if (!best_polygon_triangulation(
           at, up, [&](int i, int j) { return !edge_exists(ring[i], ring[j]); }, forced, tris, after, before))
@@ -778,7 +789,7 @@ bool Collapser::try_remove_vertex(int v) {
 
 bool Collapser::try_slide_on_line(int x) {
   if (line_degree_[x] != 2) return false;
-  std::vector<int> fx;
+  std::vector<int>& fx = slide_faces_;  // (scratch: tried for every line vertex, pass after pass)
   live_faces(x, fx);
   int ends[2], n = 0;
   for (int f : fx)
@@ -821,7 +832,8 @@ bool Collapser::try_slide_on_line(int x) {
     for (int z = 0; z < 3; ++z) q[z] = t[z] == x ? best_at : P(t[z]);
     dv6 += det(sub3(q[0], o), sub3(q[1], o), sub3(q[2], o));  // old faces span nothing seen from o
   }
-  std::vector<int> ring;  // free neighbours, which may give the volume back
+  std::vector<int>& ring = slide_ring_;  // free neighbours, which may give the volume back
+  ring.clear();
   for (int f : fx)
     for (int y : r_.faces[f])
       if (y != x && line_degree_[y] == 0 && std::find(ring.begin(), ring.end(), y) == ring.end()) ring.push_back(y);
@@ -837,7 +849,8 @@ bool Collapser::try_slide_on_line(int x) {
     r_.vertices[x] = o;
     if (!plan) return false;
   }
-  std::vector<std::pair<int, char>> marks;  // changed_ before the move, restored if it is undone
+  std::vector<std::pair<int, char>>& marks = slide_marks_;  // changed_ before the move, restored if undone
+  marks.clear();
   for (int f : fx)
     for (int y : r_.faces[f]) marks.push_back({y, changed_[y]});
   if (!move_vertex(x, fx, best_at)) return false;
