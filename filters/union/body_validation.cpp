@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <system_error>
 #include <vector>
 
 namespace mr::surface_union {
@@ -22,6 +23,12 @@ std::string label(const Body& b, size_t index) {
 bool degenerate(const Body& b, const std::array<int, 3>& f) {
   const double *p = b.vertices[f[0]].data(), *q = b.vertices[f[1]].data(), *r = b.vertices[f[2]].data();
   return orient2d(p, q, r, 0, 1) == 0 && orient2d(p, q, r, 1, 2) == 0 && orient2d(p, q, r, 2, 0) == 0;
+}
+
+TopologyError crosses_itself(const Body& b, size_t i, const std::array<int, 2>& pair) {
+  return TopologyError(label(b, i) + " intersects itself (its faces " + std::to_string(pair[0]) + " and " +
+                       std::to_string(pair[1]) + " cross): the union needs bodies with an inside; repair it "
+                       "first (Filters > Selection > Select Self Intersecting Faces shows where)");
 }
 
 /// Checks body i and turns it outward if it is inward; returns whether it did.
@@ -84,9 +91,7 @@ bool validate_body(Body& b, size_t i, bool self_intersections) {
   // Signed volume decides inward/outward.
   const bool outward = faces_outward(b);
   if (const auto pair = self_intersections ? self_intersection(b, edges, outward) : std::nullopt)
-    throw TopologyError(name + " intersects itself (its faces " + std::to_string((*pair)[0]) + " and " +
-                        std::to_string((*pair)[1]) + " cross): the union needs bodies with an inside; repair it "
-                        "first (Filters > Selection > Select Self Intersecting Faces shows where)");
+    throw crosses_itself(b, i, *pair);
   if (!outward) {
     for (auto& f : b.faces) std::swap(f[1], f[2]);
     return true;
@@ -112,6 +117,44 @@ int validate_bodies(std::vector<Body>& bodies, bool self_intersections) {
   for (const auto& e : error)
     if (e) std::rethrow_exception(e);
   return int(std::count(flipped.begin(), flipped.end(), 1));
+}
+
+SelfIntersectionCheck::SelfIntersectionCheck(const std::vector<Body>& bodies)
+    : bodies_(bodies), crossing_(bodies.size()), error_(bodies.size()) {
+  if (worker_count() <= 1) finish();
+}
+
+SelfIntersectionCheck::~SelfIntersectionCheck() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void SelfIntersectionCheck::start() {
+  if (thread_.joinable() || next_ >= bodies_.size()) return;
+  try {
+    thread_ = std::thread([this] { work(); });
+  } catch (const std::system_error&) {
+    // no thread to be had: finish() checks them all
+  }
+}
+
+void SelfIntersectionCheck::work() {
+  // (The bodies face outward now: validate_bodies turned the others.)
+  for (size_t i; (i = next_.fetch_add(1)) < bodies_.size();) {
+    try {
+      crossing_[i] = self_intersection(bodies_[i]);
+    } catch (...) {
+      error_[i] = std::current_exception();
+    }
+  }
+}
+
+void SelfIntersectionCheck::finish() {
+  work();
+  if (thread_.joinable()) thread_.join();
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    if (error_[i]) std::rethrow_exception(error_[i]);
+    if (crossing_[i]) throw crosses_itself(bodies_[i], i, *crossing_[i]);
+  }
 }
 
 }  // namespace mr::surface_union

@@ -5,6 +5,11 @@
 
 #include "union/surface_union.h"
 
+#include <array>
+#include <atomic>
+#include <exception>
+#include <optional>
+#include <thread>
 #include <vector>
 
 namespace mr::surface_union {
@@ -12,5 +17,34 @@ namespace mr::surface_union {
 /// \throw InvalidInput / TopologyError naming the body. Flips inward bodies in place.
 /// With `self_intersections`, a body that crosses itself is refused too.
 int validate_bodies(std::vector<Body>& bodies, bool self_intersections = true);
+
+/// The self-intersection part of the validation, run beside the union's sliver step:
+/// that step is sequential and leaves the other cores idle, and on CAD plates the check
+/// costs a sixth of the union. The caller starts it there and returns the union only
+/// after finish(); it also calls finish() before passing on any failure of its own, so a
+/// body that crosses itself is reported as validate_bodies reports it (the first such
+/// body in order) and nothing else is. With one thread (MESHREGRID_THREADS=1) the check
+/// runs in the constructor, before any work, and throws there. Keeps a reference to
+/// `bodies`, which must outlive it.
+class SelfIntersectionCheck {
+public:
+  explicit SelfIntersectionCheck(const std::vector<Body>& bodies);
+  SelfIntersectionCheck(const SelfIntersectionCheck&) = delete;
+  SelfIntersectionCheck& operator=(const SelfIntersectionCheck&) = delete;
+  ~SelfIntersectionCheck();  // waits for the thread
+  /// Starts checking on another thread (once; nothing when there is none to be had).
+  void start();
+  /// Checks what is left on this thread too, and waits.
+  /// \throw TopologyError naming the first body that crosses itself.
+  void finish();
+
+private:
+  void work();  // takes bodies one at a time until none is left
+  const std::vector<Body>& bodies_;
+  std::vector<std::optional<std::array<int, 2>>> crossing_;  // per body
+  std::vector<std::exception_ptr> error_;                     // per body (out of memory)
+  std::atomic<size_t> next_{0};
+  std::thread thread_;
+};
 
 }  // namespace mr::surface_union

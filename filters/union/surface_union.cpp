@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace mr::surface_union {
@@ -100,19 +101,10 @@ void chain_lines(Result& r) {
     }
 }
 
-}  // namespace
-
-Result compute_union(const std::vector<Body>& input, const Params& params) {
-  const auto t_start = Clock::now();
-  if (!(params.sliver_angle_deg >= 0 && params.sliver_angle_deg < 60))
-    throw InvalidInput("sliver angle must be in [0, 60) degrees");
-  if (!(params.sliver_max_deviation >= 0) || !(params.sliver_max_volume_change >= 0))
-    throw InvalidInput("sliver deviation and volume change bounds must be >= 0");
-  std::vector<Body> bodies = input;
-  Result r;
-  r.bodies_reoriented = validate_bodies(bodies, params.check_self_intersections);
-  r.bodies = int(bodies.size());
-
+/// Steps 1-8 on bodies that passed the validation (but for self-intersections, which
+/// are being checked beside it).
+void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, Result& r,
+                        SelfIntersectionCheck* check) {
   Soup soup;
   soup.body_count = int(bodies.size());
   for (int b = 0; b < soup.body_count; ++b) {
@@ -288,8 +280,10 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
 
   // Nothing above is needed any more: freed beside the sliver step.
   BackgroundRelease release;
-  release.release(bodies, soup, pts, vertex_point, pairs, cf, intersector, may_meet, sub, sub_body, sub_face, sub_cut,
+  release.release(soup, pts, vertex_point, pairs, cf, intersector, may_meet, sub, sub_body, sub_face, sub_cut,
                   dropped, kept_copy_body, cut_list, cut_triangles, cl, uf, vertex_of, face_of_sub);
+  // The sliver step runs on one thread: the bodies' self-intersection check takes another.
+  if (check) check->start();
   // 5. Slivers.
   t = Clock::now();
   if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,
@@ -299,6 +293,32 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
   r.intersection_edges /= 2;
   chain_lines(r);
   r.min_angle_deg = min_angle_deg(r.vertices, r.faces);
+}
+
+}  // namespace
+
+Result compute_union(const std::vector<Body>& input, const Params& params) {
+  const auto t_start = Clock::now();
+  if (!(params.sliver_angle_deg >= 0 && params.sliver_angle_deg < 60))
+    throw InvalidInput("sliver angle must be in [0, 60) degrees");
+  if (!(params.sliver_max_deviation >= 0) || !(params.sliver_max_volume_change >= 0))
+    throw InvalidInput("sliver deviation and volume change bounds must be >= 0");
+  std::vector<Body> bodies = input;
+  Result r;
+  r.bodies_reoriented = validate_bodies(bodies, false);
+  r.bodies = int(bodies.size());
+  // Declared after `bodies`, so it is joined before they go. Started beside the sliver
+  // step; the steps before it only cut and sort faces, which a body crossing itself
+  // cannot derail (a failure there waits for the check, whose message is the one given).
+  std::optional<SelfIntersectionCheck> check;
+  if (params.check_self_intersections) check.emplace(bodies);
+  try {
+    unite_valid_bodies(bodies, params, r, check ? &*check : nullptr);
+  } catch (...) {
+    if (check) check->finish();  // a body crossing itself explains any failure: said first
+    throw;
+  }
+  if (check) check->finish();
   r.time_total_ms = ms_since(t_start);
   return r;
 }

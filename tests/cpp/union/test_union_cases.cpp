@@ -192,6 +192,55 @@ TEST(UnionBadInput, SelfIntersectingBodyIsNamed) {
   }
 }
 
+// The check of bodies crossing themselves runs beside the union (started with the sliver
+// step): the steps before it cut and sort the faces of a bad body too. Whatever they do
+// with it (fail, or go on), the message names the body, on every thread count, and
+// nothing breaks meanwhile (AddressSanitizer runs this as well).
+TEST(UnionBadInput, BodyCrossingItselfIsNamedWhateverTheUnionDidMeanwhile) {
+  std::vector<Body> bad;
+  Body bent = cube_body(4, 0, 0, 0);  // a corner pushed through the opposite side
+  for (auto& v : bent.vertices)
+    if (v == std::array<double, 3>{1, 1, 1}) v = {-0.5, -0.5, -3};
+  bent.name = "bent";
+  bad.push_back(bent);
+  Body twin = cube_body(4, 0, 0, 0);  // two overlapping cubes as one body
+  const Body other = cube_body(4, 0.5, 0.25, 0.125);
+  const int base = int(twin.vertices.size());
+  twin.vertices.insert(twin.vertices.end(), other.vertices.begin(), other.vertices.end());
+  for (const auto& f : other.faces) twin.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  twin.name = "twin";
+  bad.push_back(twin);
+  Body star;  // pentagram bipyramid: twice around each apex
+  star.vertices = {{0.5, 0.5, 1.5}, {0.5, 0.5, -0.5}};
+  for (int i = 0; i < 5; ++i) {
+    const double a = 4 * 3.14159265358979323846 * i / 5;
+    star.vertices.push_back({0.5 + std::cos(a), 0.5 + std::sin(a), 0.5});
+  }
+  for (int i = 0; i < 5; ++i) {
+    star.faces.push_back({0, 2 + i, 2 + (i + 1) % 5});
+    star.faces.push_back({1, 2 + (i + 1) % 5, 2 + i});
+  }
+  star.name = "pentagram";
+  bad.push_back(star);
+  for (const char* threads : {"", "1"}) {
+    if (*threads) setenv("MESHREGRID_THREADS", threads, 1);
+    for (const Body& b : bad)
+      for (double sliver : {0.0, 10.0}) {
+        Params p;
+        p.sliver_angle_deg = sliver;
+        try {
+          // A good body through the bad one, and one apart.
+          compute_union({cube_body(2, 0.3, 0.2, 0.1), b, cube_body(1, 5, 0, 0)}, p);
+          ADD_FAILURE() << b.name << " was not refused";
+        } catch (const TopologyError& e) {
+          EXPECT_NE(std::string(e.what()).find("body 1 ('" + b.name + "') intersects itself"), std::string::npos)
+              << e.what();
+        }
+      }
+    unsetenv("MESHREGRID_THREADS");
+  }
+}
+
 TEST(UnionBadInput, SelfIntersectionOfAnOpenBodyTestsEveryPair) {
   // Without two faces on every edge no vertex is known convex, so faces sharing only a
   // corner are tested too: a fan whose last face folds back over its first (they share
