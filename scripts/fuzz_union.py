@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 """Random unions with many degenerate contacts, checked against manifold3d.
 
-Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex]
+Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex | --selfcrossing]
 Each seed builds 2-7 bodies of one kind: grid-aligned cubes (coplanar faces, shared edges,
 touching), spheres on a 0.1 grid (identical copies, touching poles), subdivided cubes and
 spheres on a quarter grid, spheres of several radii sharing centres and poles, randomly rotated
 cubes. With --nonconvex the bodies are not convex: spheres with radial noise (blobs), rotated
 tori (not star-shaped), and a blob with copies of itself scaled about one of its vertices or
 shifted on a grid (coincident and nearly coincident faces).
+With --selfcrossing one body is a blob and a shifted copy of it in one layer (it crosses
+itself), among good blobs cut by it: the union must refuse it by name, whatever its steps did
+with it meanwhile (the self-intersection check runs beside the sliver step), and not crash.
 Each is united with the sliver step off and on and must give no error, a closed two-manifold
 surface and manifold3d's volume (cavities filled): 1e-9 relative without the sliver step, its
 volume budget (1e-6) with it. Where only the volume differs, MeshLab's union (libigl on CGAL's
@@ -116,8 +119,50 @@ def nonconvex_case(seed, sphere, torus):
     return kind, parts
 
 
+def selfcrossing_case(seed, sphere):
+    """A blob and its copy shifted by less than its size, as one body, among good blobs."""
+    rng = np.random.default_rng(seed)
+    v, f = sphere
+    v = v * (1 + rng.uniform(-0.3, 0.3, (len(v), 1))) * 2 * rng.uniform(0.3, 0.8)
+    shift = rng.uniform(-0.35, 0.35, 3)
+    twin = (np.concatenate([v, v + shift]), np.concatenate([f, f + len(v)]))
+    parts = []
+    for _ in range(rng.integers(1, 4)):
+        w = sphere[0] * (1 + rng.uniform(-0.3, 0.3, (len(sphere[0]), 1))) * 2 * rng.uniform(0.3, 0.8)
+        parts.append((w + rng.uniform(-0.5, 0.5, 3), sphere[1]))
+    at = int(rng.integers(0, len(parts) + 1))
+    parts.insert(at, twin)
+    return at, parts
+
+
+def check_refused(first, last):
+    _, sphere, _ = shapes()
+    bad = 0
+    for seed in range(first, last):
+        at, parts = selfcrossing_case(seed, sphere)
+        for sliver in (0.0, 10.0):
+            ms = pymeshlab.MeshSet()
+            for v, f in parts:
+                ms.add_mesh(pymeshlab.Mesh(v, f))
+            try:
+                ms.generate_surface_intersection_union(bodies=0, sliver_angle=sliver)
+                print(f"seed {seed} sliver {sliver}: body {at} was not refused")
+                bad += 1
+            except pymeshlab.PyMeshLabException as e:
+                if f"body {at} " not in str(e) or "intersects itself" not in str(e):
+                    print(f"seed {seed} sliver {sliver}: {e}")
+                    bad += 1
+            if ms.mesh_number() != len(parts):
+                print(f"seed {seed} sliver {sliver}: a layer was added")
+                bad += 1
+    print(f"{last - first} seeds, {bad} failures")
+    return 1 if bad else 0
+
+
 def main():
     first, last = int(sys.argv[1]), int(sys.argv[2])
+    if "--selfcrossing" in sys.argv[3:]:
+        return check_refused(first, last)
     nonconvex = "--nonconvex" in sys.argv[3:]
     cube, sphere, cube2 = shapes()
     ms = pymeshlab.MeshSet()
