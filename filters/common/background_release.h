@@ -6,6 +6,7 @@
 
 #include "common/parallel_for.h"
 
+#include <functional>
 #include <memory>
 #include <system_error>
 #include <thread>
@@ -13,6 +14,14 @@
 #include <utility>
 
 namespace mr {
+
+/// Takes the objects (moved from, left empty) into a task that destroys them when it
+/// runs (or when it is dropped), to be run on whichever thread has time.
+template <class... T>
+std::function<void()> destroyer(T&... objects) {
+  auto held = std::make_shared<std::tuple<T...>>(std::move(objects)...);
+  return [held]() mutable { held.reset(); };
+}
 
 class BackgroundRelease {
 public:
@@ -27,15 +36,20 @@ public:
   /// or here when one thread is all there is. Call once.
   template <class... T>
   void release(T&... objects) {
-    auto held = std::make_unique<std::tuple<T...>>(std::move(objects)...);
-    if (worker_count() <= 1) return;  // destroyed here, at the end of this call
-    std::tuple<T...>* raw = held.get();
-    try {
-      thread_ = std::thread([raw] { delete raw; });
-    } catch (const std::system_error&) {
-      return;  // no thread to be had: freed here after all
+    run(destroyer(objects...));
+  }
+
+  /// Runs `task` on another thread, or here when one thread is all there is. Call once.
+  void run(std::function<void()> task) {
+    if (worker_count() > 1) {
+      try {
+        thread_ = std::thread(std::move(task));
+        return;
+      } catch (const std::system_error&) {
+        // no thread to be had: run here after all
+      }
     }
-    held.release();  // the thread owns it now
+    task();
   }
 
 private:

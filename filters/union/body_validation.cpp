@@ -128,13 +128,19 @@ SelfIntersectionCheck::~SelfIntersectionCheck() {
   if (thread_.joinable()) thread_.join();
 }
 
-void SelfIntersectionCheck::start() {
-  if (thread_.joinable() || next_ >= bodies_.size()) return;
-  try {
-    thread_ = std::thread([this] { work(); });
-  } catch (const std::system_error&) {
-    // no thread to be had: finish() checks them all
+void SelfIntersectionCheck::start(std::function<void()> first) {
+  if (worker_count() > 1 && !thread_.joinable()) {
+    try {
+      thread_ = std::thread([this, first = std::move(first)] {
+        first();
+        work();
+      });
+      return;
+    } catch (const std::system_error&) {
+      // no thread to be had: finish() checks them all
+    }
   }
+  first();
 }
 
 void SelfIntersectionCheck::work() {

@@ -278,12 +278,14 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
   }
   r.time_classify_ms = ms_since(t);
 
-  // Nothing above is needed any more: freed beside the sliver step.
+  // Nothing above is needed any more: freed beside the sliver step, which runs on one
+  // thread, on one other thread, which then checks the bodies for self-intersections.
+  auto free_temporaries = destroyer(soup, pts, vertex_point, pairs, cf, intersector, may_meet, sub, sub_body, sub_face,
+                                    sub_cut, dropped, kept_copy_body, cut_list, cut_triangles, cl, uf, vertex_of,
+                                    face_of_sub);
   BackgroundRelease release;
-  release.release(soup, pts, vertex_point, pairs, cf, intersector, may_meet, sub, sub_body, sub_face, sub_cut,
-                  dropped, kept_copy_body, cut_list, cut_triangles, cl, uf, vertex_of, face_of_sub);
-  // The sliver step runs on one thread: the bodies' self-intersection check takes another.
-  if (check) check->start();
+  if (check) check->start(std::move(free_temporaries));
+  else release.run(std::move(free_temporaries));
   // 5. Slivers.
   t = Clock::now();
   if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,
