@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <unordered_set>
 
+#include "common/flat_index_map.h"
 #include "union/exact.h"
 #include "union/face_clearance.h"
 #include "union/same_cover.h"
@@ -59,6 +61,8 @@ public:
     for (const auto& p : r.vertices)
       for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }
     max_dev_ = max_dev * norm(sub3(hi, lo));
+    position_index_.reserve(r.vertices.size());
+    for (const V3& p : r.vertices) ++vertices_at(p);
     // Line edges and degrees.
     for (int f = 0; f < int(r.faces.size()); ++f)
       for (int z = 0; z < 3; ++z)
@@ -249,6 +253,33 @@ private:
   }
   // Reused by try_collapse (called for every candidate edge): no allocation per call.
   std::vector<int> scratch_fv_, scratch_fw_, scratch_nv_, scratch_nw_, scratch_fx_;
+  // How many vertices (live or not) sit at each position: where only one does, no other
+  // sheet's vertex can sit where a moved or removed vertex was (cover_unchanged).
+  struct PositionHash {
+    size_t operator()(const V3& p) const {
+      uint64_t h = 0;
+      for (double c : p) {
+        uint64_t bits;
+        std::memcpy(&bits, &c, sizeof bits);
+        h = (h ^ bits) * 0x9E3779B97F4A7C15ull;
+      }
+      return size_t(h ^ (h >> 29));
+    }
+  };
+  FlatIndexMap<V3, PositionHash> position_index_;
+  std::vector<int> position_count_;
+  int& vertices_at(const V3& p) {
+    const V3 key{p[0] + 0.0, p[1] + 0.0, p[2] + 0.0};  // -0 and +0 are one position
+    const auto [slot, added] = position_index_.emplace(key, int(position_count_.size()));
+    if (added) position_count_.push_back(0);
+    return position_count_[size_t(slot)];
+  }
+  /// Every move of a vertex goes through here.
+  void place(int x, const V3& p) {
+    --vertices_at(r_.vertices[x]);
+    ++vertices_at(p);
+    r_.vertices[x] = p;
+  }
   std::vector<int> removal_faces_, removal_ring_;  // try_remove_vertex's
   std::vector<int> slide_faces_, slide_ring_;      // try_slide_on_line's
   std::vector<std::pair<int, char>> slide_marks_;
@@ -372,6 +403,7 @@ bool Collapser::cover_unchanged(int gone, int gone2) {
   for (int x : {gone, gone2}) {
     if (x < 0) continue;
     const V3 px = P(x);
+    if (vertices_at(px) <= 1) continue;  // x alone there
     grid_.near(px, px, scratch_at_v_);
     for (int g : scratch_at_v_)
       if (alive_[g])
@@ -525,7 +557,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   for (int x : nv) changed_[x] = 1;
   for (int x : nw) changed_[x] = 1;
   if (moved) {
-    r_.vertices[w] = target;
+    place(w, target);
     for (int f : fw) {
       refile(f);
       if (bends_line) cut_[f] = 1;  // reshaped by the step: treated like the cut's own faces
@@ -841,12 +873,12 @@ bool Collapser::try_slide_on_line(int x) {
   if (!affordable) {
     // Some free neighbour must be able to give the volume back after the move: planned
     // with x moved (no crossing check yet), before anything is checked exactly.
-    r_.vertices[x] = best_at;
+    place(x, best_at);
     bool plan = false;
     V3 at;
     for (int y : ring)
       if (!plan) plan = plan_compensation(y, dv6, at);
-    r_.vertices[x] = o;
+    place(x, o);
     if (!plan) return false;
   }
   std::vector<std::pair<int, char>>& marks = slide_marks_;  // changed_ before the move, restored if undone
@@ -863,7 +895,7 @@ bool Collapser::try_slide_on_line(int x) {
   }
   // Neither given back nor affordable: x goes back where it was (which was clear), and
   // nothing counts as changed.
-  r_.vertices[x] = o;
+  place(x, o);
   for (int f : fx) refile(f);
   for (auto it = marks.rbegin(); it != marks.rend(); ++it) changed_[it->first] = it->second;
   return false;
@@ -921,7 +953,7 @@ bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
   start_move();
   for (int f : fx) propose(f, x, x, at);
   if (!cover_unchanged(x) && !stays_clear()) return false;
-  r_.vertices[x] = at;
+  place(x, at);
   for (int f : fx) {
     refile(f);
     for (int y : r_.faces[f]) changed_[y] = 1;
