@@ -161,9 +161,10 @@ void resolve_plane_sides(const V3 A[3], const V3 B[3], int sides[3]) {
 /// (Devillers and Guigue 2002). p1 and p2 are the lone corners, the others taken in the
 /// face's turning order; swapping a face's other two corners turns its plane over, so
 /// that both lone corners lie on the positive side of the other plane. Along the common
-/// line the segments are then [q1 r1 crossing .. p1 q1 crossing] and [p2 q2 crossing ..
-/// p2 r2 crossing], and orient3d(p1, q1, p2, q2) and orient3d(p1, r1, p2, r2) are the
-/// signs of the differences of those ends.
+/// line (oriented as n1 x n2) F's segment then runs from its crossing on p1r1 to the one
+/// on p1q1, and G's from its crossing on p2q2 to the one on p2r2; orient3d(p1, q1, p2, q2)
+/// is the sign of G's start minus F's end, orient3d(p1, r1, p2, r2) that of G's end
+/// minus F's start (taken below with its last two points swapped, so both must be <= 0).
 bool straddling_triangles_meet(const V3 F[3], const V3 G[3], const int sf[3], const int sg[3]) {
   const int i1 = sf[0] == sf[1] ? 2 : sf[0] == sf[2] ? 1 : 0;
   const int i2 = sg[0] == sg[1] ? 2 : sg[0] == sg[2] ? 1 : 0;

@@ -278,8 +278,9 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
   }
   r.time_classify_ms = ms_since(t);
 
-  // Nothing above is needed any more: freed beside the sliver step, which runs on one
-  // thread, on one other thread, which then checks the bodies for self-intersections.
+  // Nothing above is needed any more. The sliver step runs on this thread; the temporaries
+  // are freed on one other thread, which then checks the bodies for self-intersections
+  // (a third thread on two cores slowed the sliver step more than the check costs).
   auto free_temporaries = destroyer(soup, pts, vertex_point, pairs, cf, intersector, may_meet, sub, sub_body, sub_face,
                                     sub_cut, dropped, kept_copy_body, cut_list, cut_triangles, cl, uf, vertex_of,
                                     face_of_sub);
