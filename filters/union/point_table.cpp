@@ -1,21 +1,12 @@
 #include "union/point_table.h"
 
+#include "union/vec3.h"
+
 #include <algorithm>
-#include <cstring>
 
 namespace mr::surface_union {
 
-size_t PointTable::KeyHash::operator()(const Key& k) const {
-  uint64_t h = 1469598103934665603ull;
-  for (double v : {k.x, k.y, k.z}) {
-    if (v == 0) v = 0;  // -0 and +0 are the same point
-    uint64_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    h = (h ^ bits) * 1099511628211ull;
-    h ^= h >> 29;
-  }
-  return size_t(h);
-}
+size_t PointTable::KeyHash::operator()(const Key& k) const { return hash_position(k.x, k.y, k.z); }
 
 int PointTable::insert(QPoint&& p) {
   Key key{p.d[0] == 0 ? 0.0 : p.d[0], p.d[1] == 0 ? 0.0 : p.d[1], p.d[2] == 0 ? 0.0 : p.d[2]};

@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <unordered_set>
 
 #include "common/flat_index_map.h"
@@ -257,21 +255,12 @@ private:
   // How many vertices (live or not) sit at each position: where only one does, no other
   // sheet's vertex can sit where a moved or removed vertex was (cover_unchanged).
   struct PositionHash {
-    size_t operator()(const V3& p) const {
-      uint64_t h = 0;
-      for (double c : p) {
-        uint64_t bits;
-        std::memcpy(&bits, &c, sizeof bits);
-        h = (h ^ bits) * 0x9E3779B97F4A7C15ull;
-      }
-      return size_t(h ^ (h >> 29));
-    }
+    size_t operator()(const V3& p) const { return hash_position(p[0], p[1], p[2]); }
   };
   FlatIndexMap<V3, PositionHash> position_index_;
   std::vector<int> position_count_;
   int& vertices_at(const V3& p) {
-    const V3 key{p[0] + 0.0, p[1] + 0.0, p[2] + 0.0};  // -0 and +0 are one position
-    const auto [slot, added] = position_index_.emplace(key, int(position_count_.size()));
+    const auto [slot, added] = position_index_.emplace(p, int(position_count_.size()));
     if (added) position_count_.push_back(0);
     return position_count_[size_t(slot)];
   }

@@ -64,7 +64,7 @@ bool PairIntersector::sections_surely_apart(int f, const int* st, int g, const i
   const auto& X = soup_.face[g];
   auto normal = [&](const std::array<int, 3>& F) {
     const V3 &a = soup_.vertex[F[0]], &b = soup_.vertex[F[1]], &c = soup_.vertex[F[2]];
-    return cross({b[0] - a[0], b[1] - a[1], b[2] - a[2]}, {c[0] - a[0], c[1] - a[1], c[2] - a[2]});
+    return cross(sub3(b, a), sub3(c, a));
   };
   const V3 nt = normal(T), nx = normal(X);
   const V3 d = cross(nt, nx);
