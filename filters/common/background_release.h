@@ -1,7 +1,8 @@
 // Frees large temporaries on another thread while the caller goes on with its last
 // steps: destroying a table of a million heap-allocated exact points takes a quarter
-// of a second that nothing needs to wait for. Joined when the releaser goes out of
-// scope, so nothing outlives the call that made it.
+// of a second that nothing needs to wait for. destroyer() packs them into a task;
+// BackgroundRelease runs it and is joined when it goes out of scope, so nothing
+// outlives the call that made it.
 #pragma once
 
 #include "common/parallel_for.h"
@@ -30,13 +31,6 @@ public:
   BackgroundRelease& operator=(const BackgroundRelease&) = delete;
   ~BackgroundRelease() {
     if (thread_.joinable()) thread_.join();
-  }
-
-  /// Takes the objects (moved from, left empty) and destroys them on another thread,
-  /// or here when one thread is all there is. Call once.
-  template <class... T>
-  void release(T&... objects) {
-    run(destroyer(objects...));
   }
 
   /// Runs `task` on another thread, or here when one thread is all there is. Call once.

@@ -32,7 +32,7 @@ TopologyError crosses_itself(const Body& b, size_t i, const std::array<int, 2>& 
 }
 
 /// Checks body i and turns it outward if it is inward; returns whether it did.
-bool validate_body(Body& b, size_t i, bool self_intersections) {
+bool validate_body(Body& b, size_t i) {
   const std::string name = label(b, i);
   if (b.vertices.empty() || b.faces.empty()) throw InvalidInput(name + " is empty: it has no faces");
   // The floating-point filters multiply up to six coordinates (differences) and would
@@ -89,10 +89,7 @@ bool validate_body(Body& b, size_t i, bool self_intersections) {
     throw TopologyError(name + " is not consistently oriented (" + std::to_string(misoriented) +
                         " edges): reorient it first (Cleaning and Repairing > Re-Orient all faces coherently)");
   // Signed volume decides inward/outward.
-  const bool outward = faces_outward(b);
-  if (const auto pair = self_intersections ? self_intersection(b, edges, outward) : std::nullopt)
-    throw crosses_itself(b, i, *pair);
-  if (!outward) {
+  if (!faces_outward(b)) {
     for (auto& f : b.faces) std::swap(f[1], f[2]);
     return true;
   }
@@ -101,7 +98,7 @@ bool validate_body(Body& b, size_t i, bool self_intersections) {
 
 }  // namespace
 
-int validate_bodies(std::vector<Body>& bodies, bool self_intersections) {
+int validate_bodies(std::vector<Body>& bodies) {
   if (bodies.empty()) throw InvalidInput("there are no bodies: give visible layers or a mesh with closed components");
   // Bodies are independent: checked in parallel, and the first bad one in order is the
   // one reported, whatever thread found it.
@@ -109,7 +106,7 @@ int validate_bodies(std::vector<Body>& bodies, bool self_intersections) {
   std::vector<char> flipped(bodies.size(), 0);
   parallel_for(bodies.size(), 1, [&](size_t i) {
     try {
-      flipped[i] = validate_body(bodies[i], i, self_intersections);
+      flipped[i] = validate_body(bodies[i], i);
     } catch (...) {
       error[i] = std::current_exception();
     }

@@ -1,6 +1,7 @@
-// Checks each body before any work: finite, non-degenerate, closed, manifold,
-// consistently oriented and not crossing itself; inward-oriented bodies are flipped
-// (returned count).
+// Checks each body before any work: finite, within the filters' range, non-degenerate,
+// closed, manifold and consistently oriented; inward-oriented bodies are flipped
+// (returned count). Whether a body crosses itself is checked beside the union's sliver
+// step (SelfIntersectionCheck).
 #pragma once
 
 #include "union/surface_union.h"
@@ -16,15 +17,14 @@
 namespace mr::surface_union {
 
 /// \throw InvalidInput / TopologyError naming the body. Flips inward bodies in place.
-/// With `self_intersections`, a body that crosses itself is refused too.
-int validate_bodies(std::vector<Body>& bodies, bool self_intersections = true);
+int validate_bodies(std::vector<Body>& bodies);
 
 /// The self-intersection part of the validation, run beside the union's sliver step:
 /// that step is sequential and leaves the other cores idle, and on CAD plates the check
 /// costs a sixth of the union. The caller starts it there and returns the union only
 /// after finish(); it also calls finish() before passing on any failure of its own, so a
-/// body that crosses itself is reported as validate_bodies reports it (the first such
-/// body in order) and nothing else is. With one thread (MESHREGRID_THREADS=1) the check
+/// body that crosses itself is reported (the first such body in order) and nothing else
+/// is. With one thread (MESHREGRID_THREADS=1) the check
 /// runs in the constructor, before any work, and throws there. Keeps a reference to
 /// `bodies`, which must outlive it.
 class SelfIntersectionCheck {

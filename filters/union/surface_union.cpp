@@ -308,7 +308,7 @@ Result compute_union(const std::vector<Body>& input, const Params& params) {
     throw InvalidInput("sliver deviation and volume change bounds must be >= 0");
   std::vector<Body> bodies = input;
   Result r;
-  r.bodies_reoriented = validate_bodies(bodies, false);
+  r.bodies_reoriented = validate_bodies(bodies);
   r.bodies = int(bodies.size());
   // Declared after `bodies`, so it is joined before they go. Started beside the sliver
   // step; the steps before it only cut and sort faces, which a body crossing itself
