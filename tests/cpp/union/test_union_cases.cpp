@@ -222,8 +222,14 @@ TEST(UnionBadInput, BodyCrossingItselfIsNamedWhateverTheUnionDidMeanwhile) {
   }
   star.name = "pentagram";
   bad.push_back(star);
+  struct ThreadsSetting {  // restored whatever leaves the loop (a stray exception too)
+    explicit ThreadsSetting(const char* n) {
+      if (*n) setenv("MESHREGRID_THREADS", n, 1);
+    }
+    ~ThreadsSetting() { unsetenv("MESHREGRID_THREADS"); }
+  };
   for (const char* threads : {"", "1"}) {
-    if (*threads) setenv("MESHREGRID_THREADS", threads, 1);
+    const ThreadsSetting setting(threads);
     for (const Body& b : bad)
       for (double sliver : {0.0, 10.0}) {
         Params p;
@@ -237,7 +243,6 @@ TEST(UnionBadInput, BodyCrossingItselfIsNamedWhateverTheUnionDidMeanwhile) {
               << e.what();
         }
       }
-    unsetenv("MESHREGRID_THREADS");
   }
 }
 
