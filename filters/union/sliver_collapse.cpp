@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "common/flat_index_map.h"
@@ -103,6 +104,25 @@ private:
     if (at < 0 || changed_at_[v] > at) return false;
     for (int x : ring)
       if (changed_at_[x] > at) return false;
+    return true;
+  }
+  /// The collapse of v onto w was refused before its crossing check since the last change
+  /// at v and at w. What that part decides reads only the stars of v and w (their faces,
+  /// corners, lines and cut marks: any change there changes the clock at v or w) and the
+  /// volume budget, which only shrinks within a round: it would refuse again.
+  static uint64_t collapse_key(int v, int w) { return uint64_t(uint32_t(v)) << 32 | uint32_t(w); }
+  bool collapse_still_refused(int v, int w) const {
+    const auto it = collapse_refused_at_.find(collapse_key(v, w));
+    return it != collapse_refused_at_.end() && changed_at_[v] <= it->second && changed_at_[w] <= it->second;
+  }
+  /// The same for a slide of x along its line, whose refusal before the crossing check
+  /// also reads the stars of x's ring (the neighbours that could give the volume back).
+  bool slide_still_refused(int x, const std::vector<int>& fx) const {
+    const long at = slide_refused_at_[x];
+    if (at < 0 || changed_at_[x] > at) return false;
+    for (int f : fx)
+      for (int y : r_.faces[f])
+        if (changed_at_[y] > at) return false;
     return true;
   }
   /// Face f with its corner x at `moved` (into q); false if it would degenerate or turn over.
@@ -292,6 +312,8 @@ private:
   long clock_ = 0;                        // counts face changes
   std::vector<long> changed_at_;          // per vertex: clock of the last change at it
   std::vector<long> removal_refused_at_;  // per vertex: clock of its refused removal, or -1
+  std::vector<long> slide_refused_at_;    // per vertex: clock of its refused slide on a line, or -1
+  std::unordered_map<uint64_t, long> collapse_refused_at_;  // (v, w): clock of the refused collapse of v onto w
   std::vector<std::array<int, 3>> new_ids_;
   std::vector<std::array<V3, 3>> new_pos_;
   std::vector<int> new_mark_;  // per face: stamp of the move that replaces it
@@ -404,6 +426,12 @@ bool Collapser::cover_unchanged(int gone, int gone2) {
 }
 
 bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
+  if (collapse_still_refused(v, w)) return false;
+  // Every refusal up to the crossing check is remembered (see collapse_still_refused).
+  auto refuse = [&] {
+    collapse_refused_at_[collapse_key(v, w)] = clock_;
+    return false;
+  };
   // Lines: v may only slide along its own line edge (v, w) at a vertex of line degree 2, or,
   // where two lines pass closer than a sliver allows (bodies nearly touching on a third one),
   // join a vertex w of the other line: the lines then meet at w. Or bend onto a vertex w
@@ -414,7 +442,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   const bool joins_line = line_degree_[v] == 2 && !vw_line && line_degree_[w] > 0;
   const bool bends_line = line_degree_[v] == 2 && !vw_line && line_degree_[w] == 0 &&
                           norm(sub3(P(v), P(w))) <= max_dev_ && on_crease(w);
-  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] >= 2) && !joins_line && !bends_line) return false;
+  if (line_degree_[v] > 0 && !(vw_line && line_degree_[v] >= 2) && !joins_line && !bends_line) return refuse();
   std::vector<int>& fv = scratch_fv_;
   std::vector<int>& fw = scratch_fw_;
   live_faces(v, fv);
@@ -423,7 +451,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   int shared_faces = 0;
   for (int f : fv)
     if (has_corner(r_.faces[f], w)) ++shared_faces;
-  if (shared_faces != 2) return false;
+  if (shared_faces != 2) return refuse();
   std::vector<int>& nv = scratch_nv_;  // one-rings (unique; marked, no sorting)
   std::vector<int>& nw = scratch_nw_;
   nv.clear();
@@ -444,7 +472,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
       ring_mark_[x] = in_v;
       nv.push_back(x);
     }
-  if (common != 2) return false;
+  if (common != 2) return refuse();
   // Target: w's position, moved along the volume gradient of the new star so that the
   // enclosed volume stays the same (Lindstrom-Turk); the move is tiny where the
   // surface is nearly flat. Coordinates relative to w keep the sums accurate. w stays
@@ -522,11 +550,11 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   }
   if (!ok) {
     p = {0, 0, 0};
-    if (!acceptable(p, dv)) return false;
+    if (!acceptable(p, dv)) return refuse();
   }
   const V3 target{o[0] + p[0], o[1] + p[1], o[2] + p[2]};
   const bool moved = p[0] != 0 || p[1] != 0 || p[2] != 0;
-  if (std::fabs(dv) / 6 > volume_budget_) return false;
+  if (std::fabs(dv) / 6 > volume_budget_) return refuse();
   // Score: the volume change plus the volume swept by the compensating move.
   if (dv_out) *dv_out = std::fabs(dv) / 6 + norm(p) * std::sqrt(gg) / 6;
   if (!apply) return true;
@@ -813,11 +841,17 @@ bool Collapser::try_slide_on_line(int x) {
   if (line_degree_[x] != 2) return false;
   std::vector<int>& fx = slide_faces_;  // (scratch: tried for every line vertex, pass after pass)
   live_faces(x, fx);
+  if (slide_still_refused(x, fx)) return false;
+  // Every refusal up to the crossing check is remembered (see slide_still_refused).
+  auto refuse = [&] {
+    slide_refused_at_[x] = clock_;
+    return false;
+  };
   int ends[2], n = 0;
   for (int f : fx)
     for (int y : r_.faces[f])
       if (y != x && n < 2 && line_.count(ekey(x, y)) && (n == 0 || ends[0] != y)) ends[n++] = y;
-  if (n != 2) return false;
+  if (n != 2) return refuse();
   double before = 1e300;
   for (int f : fx) before = std::min(before, min_angle(f));
   const V3 o = P(x);
@@ -845,7 +879,7 @@ bool Collapser::try_slide_on_line(int x) {
       if (fine && worst > best) { best = worst; best_at = at; }
     }
   }
-  if (!(best > before * (1 + kMinSlideGain))) return false;
+  if (!(best > before * (1 + kMinSlideGain))) return refuse();
   // Six times the volume change of the move, given back by a free neighbour or paid.
   double dv6 = 0;
   for (int f : fx) {
@@ -869,7 +903,7 @@ bool Collapser::try_slide_on_line(int x) {
     for (int y : ring)
       if (!plan) plan = plan_compensation(y, dv6, at);
     place(x, o);
-    if (!plan) return false;
+    if (!plan) return refuse();
   }
   std::vector<std::pair<int, char>>& marks = slide_marks_;  // changed_ before the move, restored if undone
   marks.clear();
@@ -993,6 +1027,8 @@ int Collapser::run(double threshold) {
   changed_at_.assign(r_.vertices.size(), 0);
   for (int round = 0; round < 2; ++round) {
     removal_refused_at_.assign(r_.vertices.size(), -1);
+    slide_refused_at_.assign(r_.vertices.size(), -1);
+    collapse_refused_at_.clear();
     if (round == 0) volume_budget_ = rounding;
     else volume_budget_ = budget - (rounding - volume_budget_);
     run_passes(threshold);
