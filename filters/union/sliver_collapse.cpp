@@ -95,15 +95,16 @@ private:
     ++clock_;
     for (int y : r_.faces[f]) changed_at_[y] = clock_;
   }
-  /// Vertex v's removal was refused (before the crossing check) since the last change
-  /// at v and at its ring: it would be refused again, and its link triangulation is
-  /// the expensive part. The budget only shrinks within a round; run() forgets the
-  /// refusals between rounds.
-  bool removal_still_refused(int v, const std::vector<int>& ring) const {
-    const long at = removal_refused_at_[v];
-    if (at < 0 || changed_at_[v] > at) return false;
-    for (int x : ring)
-      if (changed_at_[x] > at) return false;
+  /// No face at x or at its ring (the corners of x's live faces fx) changed after clock
+  /// `at` (-1: never refused). A vertex removal or a line slide of x refused before its
+  /// crossing check reads no more than that (the slide's compensating neighbours are in
+  /// the ring) and the budget, which only shrinks within a round: refused then, it would
+  /// be refused again. run() forgets the refusals between rounds.
+  bool star_unchanged_since(long at, int x, const std::vector<int>& fx) const {
+    if (at < 0 || changed_at_[x] > at) return false;
+    for (int f : fx)
+      for (int y : r_.faces[f])
+        if (changed_at_[y] > at) return false;
     return true;
   }
   /// The collapse of v onto w was refused before its crossing check since the last change
@@ -114,16 +115,6 @@ private:
   bool collapse_still_refused(int v, int w) const {
     const auto it = collapse_refused_at_.find(collapse_key(v, w));
     return it != collapse_refused_at_.end() && changed_at_[v] <= it->second && changed_at_[w] <= it->second;
-  }
-  /// The same for a slide of x along its line, whose refusal before the crossing check
-  /// also reads the stars of x's ring (the neighbours that could give the volume back).
-  bool slide_still_refused(int x, const std::vector<int>& fx) const {
-    const long at = slide_refused_at_[x];
-    if (at < 0 || changed_at_[x] > at) return false;
-    for (int f : fx)
-      for (int y : r_.faces[f])
-        if (changed_at_[y] > at) return false;
-    return true;
   }
   /// Face f with its corner x at `moved` (into q); false if it would degenerate or turn over.
   bool moved_face(int f, int x, const V3& moved, V3 q[3]) const {
@@ -751,7 +742,8 @@ bool Collapser::try_remove_vertex(int v) {
     const int gap = forced[1] - forced[0];
     if (gap != 1 && gap != k - 1 && edge_exists(ring[forced[0]], ring[forced[1]])) return false;
   }
-  if (removal_still_refused(v, ring)) return false;
+  // (The link triangulation below is the expensive part of a refusal.)
+  if (star_unchanged_since(removal_refused_at_[v], v, fv)) return false;
   auto refuse = [&] {
     removal_refused_at_[v] = clock_;
     return false;
@@ -841,8 +833,8 @@ bool Collapser::try_slide_on_line(int x) {
   if (line_degree_[x] != 2) return false;
   std::vector<int>& fx = slide_faces_;  // (scratch: tried for every line vertex, pass after pass)
   live_faces(x, fx);
-  if (slide_still_refused(x, fx)) return false;
-  // Every refusal up to the crossing check is remembered (see slide_still_refused).
+  if (star_unchanged_since(slide_refused_at_[x], x, fx)) return false;
+  // Every refusal up to the crossing check is remembered (see star_unchanged_since).
   auto refuse = [&] {
     slide_refused_at_[x] = clock_;
     return false;
