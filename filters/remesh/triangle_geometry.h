@@ -2,6 +2,7 @@
 // triangle, triangle angles, and segment crossing in a tangent plane.
 #pragma once
 
+#include "common/closest_point.h"
 #include "common/tri_mesh.h"
 
 #include <array>
@@ -9,9 +10,7 @@
 
 namespace mr::remesh {
 
-/// Closest point of triangle (a,b,c) to p; `bary` receives its barycentric coordinates.
-Point3 closest_point_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c,
-                                 std::array<double, 3>& bary);
+using mr::closest_point_on_triangle;
 
 /// Smallest interior angle of triangle (a,b,c) in radians (0 for a degenerate one).
 double min_angle(const Point3& a, const Point3& b, const Point3& c);
