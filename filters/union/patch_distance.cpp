@@ -7,24 +7,34 @@ namespace {
 
 Point3 point(const V3& p) { return Point3(p[0], p[1], p[2]); }
 
-bool near_some_face(const V3& p, const std::vector<Triangle>& faces, double limit2) {
+// `hint`: the face that held the previous sample, tried first (samples of one face are
+// mostly near the same face).
+bool near_some_face(const V3& p, const std::vector<Triangle>& faces, double limit2, size_t& hint) {
   const Point3 q = point(p);
   std::array<double, 3> bary;
-  for (const Triangle& t : faces)
-    if ((closest_point_on_triangle(q, point(t[0]), point(t[1]), point(t[2]), bary) - q).SquaredNorm() <= limit2)
+  auto near = [&](size_t i) {
+    const Triangle& t = faces[i];
+    return (closest_point_on_triangle(q, point(t[0]), point(t[1]), point(t[2]), bary) - q).SquaredNorm() <= limit2;
+  };
+  if (hint < faces.size() && near(hint)) return true;
+  for (size_t i = 0; i < faces.size(); ++i)
+    if (i != hint && near(i)) {
+      hint = i;
       return true;
+    }
   return false;
 }
 
 bool samples_within(const std::vector<Triangle>& from, const std::vector<Triangle>& to, double limit2) {
+  size_t hint = 0;
   for (const Triangle& t : from) {
     V3 g;
     for (int k = 0; k < 3; ++k) g[k] = (t[0][k] + t[1][k] + t[2][k]) / 3;
-    if (!near_some_face(g, to, limit2)) return false;
+    if (!near_some_face(g, to, limit2, hint)) return false;
     for (int z = 0; z < 3; ++z) {
       V3 mid;
       for (int k = 0; k < 3; ++k) mid[k] = (t[z][k] + t[(z + 1) % 3][k]) / 2;
-      if (!near_some_face(mid, to, limit2)) return false;
+      if (!near_some_face(mid, to, limit2, hint)) return false;
     }
   }
   return true;

@@ -11,6 +11,7 @@
 #include "common/flat_index_map.h"
 #include "union/exact.h"
 #include "union/face_clearance.h"
+#include "union/face_tree.h"
 #include "union/patch_distance.h"
 #include "union/same_cover.h"
 #include "union/vec3.h"
@@ -45,6 +46,7 @@ class Collapser {
 public:
   Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change)
       : r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()), grid_(r.vertices, r.faces),
+
         new_mark_(r.faces.size(), 0), angle_(r.faces.size(), -1) {
     double volume = 0;
     for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
@@ -252,6 +254,16 @@ private:
   /// and within the bound; else the two patches are compared (patch_distance.h).
   bool stays_near(double pointwise = 1e300);
   std::vector<Triangle> near_old_, near_new_;  // scratch of stays_near and of collapses
+  /// Every proposed face lies within the deviation bound of the surface the cut made:
+  /// the replaced faces' distance from it plus `pointwise` (how far any point of them
+  /// moves, when known), or else measured at samples (corners, edge midpoints,
+  /// centroid). Keeps the new faces' distance for keep_cut_distance().
+  bool near_cut_surface(double pointwise = 1e300);
+  void keep_cut_distance() {
+    for (int f : replaced_) cut_distance_[f] = move_cut_distance_;
+  }
+  std::vector<double> cut_distance_;  // per face: bound on its distance from the cut's surface
+  double move_cut_distance_ = 0;
   /// Proposed face i meets the coordinate plane x_k = c only in an old edge or an old
   /// corner of its own (unmoved, the edge there before the move), its other corners
   /// strictly on one side, or not at all. Whatever it touches of a face in that plane,
@@ -304,6 +316,15 @@ private:
   std::vector<char> cut_;
   std::vector<std::vector<int>> vf_;
   FaceGrid grid_;  // where the faces are now, for the crossing checks
+  // The surface as the cut left it: moves one after another must not take the surface
+  // further from it than the deviation bound (each alone is within it).
+  // Built at the first move that needs it, over the faces within two rings of a cut face
+  // (the only ones moves come near).
+  FaceTree cut_surface_;
+  std::vector<V3> cut_vertices_;  // the surface the cut made, kept for the tree
+  std::vector<std::array<int, 3>> cut_faces_;
+  bool cut_surface_built_ = false;
+  void build_cut_surface();
   std::vector<int> replaced_, near_, scratch_at_v_;
   std::vector<std::array<V3, 2>> scratch_boxes_;
   std::vector<PlacedFace> scratch_before_, scratch_after_;
@@ -345,6 +366,69 @@ bool Collapser::stays_near(double pointwise) {
   }
   near_new_.assign(new_pos_.begin(), new_pos_.end());
   return patches_within(near_old_, near_new_, max_dev_);
+}
+
+void Collapser::build_cut_surface() {
+  cut_surface_built_ = true;
+  std::vector<char> in_ring(r_.vertices.size(), 0), taken(r_.faces.size(), 0);
+  for (int f = 0; f < int(r_.faces.size()); ++f)
+    if (cut_[f])
+      for (int x : r_.faces[f]) in_ring[x] = 1;
+  for (int ring = 0; ring < 2; ++ring) {
+    std::vector<char> next = in_ring;
+    for (int f = 0; f < int(r_.faces.size()); ++f) {
+      const auto& t = r_.faces[f];
+      if (alive_[f] && (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]]))
+        for (int x : t) next[x] = 1;
+    }
+    in_ring.swap(next);
+  }
+  std::vector<int> which;
+  for (int f = 0; f < int(r_.faces.size()); ++f) {
+    const auto& t = r_.faces[f];
+    if (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]]) which.push_back(f);
+  }
+  cut_surface_ = FaceTree(cut_vertices_, cut_faces_, which);
+}
+
+bool Collapser::near_cut_surface(double pointwise) {
+  double base = 0;
+  for (int f : replaced_) base = std::max(base, cut_distance_[f]);
+  if (base + pointwise <= max_dev_) {
+    move_cut_distance_ = base + pointwise;
+    return true;
+  }
+  // Samples: corners, edge midpoints, centroid. A face nearer than the farthest sample so
+  // far, or than a quarter of the bound, ends a sample's search: the faces then keep a
+  // bound a little above their distance, and small moves later add to it.
+  if (!cut_surface_built_) build_cut_surface();
+  double worst = 0.25 * max_dev_;
+  int hint = -1;
+  auto sample = [&](const V3& p) {
+    worst = std::max(worst, cut_surface_.distance(p, worst, max_dev_, &hint));
+    return worst <= max_dev_;
+  };
+  for (size_t i = 0; i < new_pos_.size(); ++i) {
+    const auto& q = new_pos_[i];
+    const V3 g{(q[0][0] + q[1][0] + q[2][0]) / 3, (q[0][1] + q[1][1] + q[2][1]) / 3, (q[0][2] + q[1][2] + q[2][2]) / 3};
+    if (!sample(g)) return false;
+    for (int z = 0; z < 3; ++z) {
+      const V3& a = q[z];
+      const V3& b = q[(z + 1) % 3];
+      // (A corner that stays where it is is a corner of the old faces, within their bound.)
+      if (a != P(new_ids_[i][z]) && !sample(a)) return false;
+      // An edge two new faces share is sampled with the first.
+      const int ia = new_ids_[i][z], ib = new_ids_[i][(z + 1) % 3];
+      bool seen = false;
+      for (size_t j = 0; j < i && !seen; ++j)
+        seen = has_corner(new_ids_[j], ia) && has_corner(new_ids_[j], ib);
+      if (seen) continue;
+      for (double t : {0.25, 0.5, 0.75})
+        if (!sample({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])})) return false;
+    }
+  }
+  move_cut_distance_ = worst;
+  return true;
 }
 
 bool Collapser::stays_clear() {
@@ -587,7 +671,10 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   if (moved)
     for (int f : fw)
       if (!has_corner(r_.faces[f], v)) propose(f, w, w, target);
-  if (!cover_unchanged(v, moved ? w : -1) && !stays_clear()) return false;
+  if (!cover_unchanged(v, moved ? w : -1)) {
+    if (!near_cut_surface(std::max(norm(sub3(target, P(v))), norm(p))) || !stays_clear()) return false;
+    keep_cut_distance();
+  }
   const double budget_before = volume_budget_;
   volume_budget_ -= std::fabs(dv) / 6;
   for (int x : nv) changed_[x] = 1;
@@ -692,7 +779,10 @@ bool Collapser::try_flip(int f, int z) {
   new_pos_ = {{P(u), P(d), P(c)}, {P(d), P(v), P(c)}};
   if (!stays_near()) return false;
   // A flat convex quad (CAD plates) covers the same place after the flip: nothing to check.
-  if (!flat_convex_quad(P(u), P(v), P(c), P(d)) && !stays_clear()) return false;
+  if (!flat_convex_quad(P(u), P(v), P(c), P(d))) {
+    if (!near_cut_surface() || !stays_clear()) return false;
+    keep_cut_distance();
+  }
   const FlipUndo undo = flip(f, g, u, v, c, d);
   // Give the volume back by a small move of one free vertex (from the first the plan
   // found: those before it cannot); else it is paid from the budget.
@@ -819,7 +909,10 @@ bool Collapser::try_remove_vertex(int v) {
     new_pos_.push_back({at[t[0]], at[t[1]], at[t[2]]});
   }
   if (!stays_near()) return refuse();
-  if (!cover_unchanged(v) && !stays_clear()) return false;
+  if (!cover_unchanged(v)) {
+    if (!near_cut_surface() || !stays_clear()) return false;
+    keep_cut_distance();
+  }
   // The first k - 2 faces of the star take the new triangles; the last two go.
   for (int x : ring) {
     auto& list = vf_[x];
@@ -1001,7 +1094,11 @@ bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
   for (int f : fx) propose(f, x, x, at);
   // Every point of the faces moves at most as far as x (a slide along a line may move
   // further than the bound: then the patches are compared, unless they cover the same).
-  if (!cover_unchanged(x) && (!stays_near(norm(sub3(at, P(x)))) || !stays_clear())) return false;
+  if (!cover_unchanged(x)) {
+    const double moved = norm(sub3(at, P(x)));
+    if (!stays_near(moved) || !near_cut_surface(moved) || !stays_clear()) return false;
+    keep_cut_distance();
+  }
   place(x, at);
   for (int f : fx) {
     refile(f);
@@ -1050,6 +1147,9 @@ int Collapser::run(double threshold) {
   const double budget = volume_budget_;
   const double rounding = std::min(budget, 1e-12 * budget_scale_);
   changed_at_.assign(r_.vertices.size(), 0);
+  cut_vertices_ = r_.vertices;
+  cut_faces_ = r_.faces;
+  cut_distance_.assign(r_.faces.size(), 0);
   for (int round = 0; round < 2; ++round) {
     removal_refused_at_.assign(r_.vertices.size(), -1);
     slide_refused_at_.assign(r_.vertices.size(), -1);

@@ -65,8 +65,9 @@ RichParameterList FilterSurfaceUnionPlugin::initParameterList(const QAction*, co
                           "collapsing their shortest edge when that improves quality, flips no normal and keeps "
                           "the intersection lines. 0 turns the step off."));
   list.addParam(RichFloat("sliver_max_deviation", defaults.sliver_max_deviation, "Sliver collapse deviation",
-                          "Largest distance a collapse may move the surface, as a fraction of the bounding-box "
-                          "diagonal (collapses on curved parts that would move it more are skipped)."));
+                          "Largest distance the sliver step may move the surface from the exact union, all its "
+                          "moves together, as a fraction of the bounding-box diagonal (checked at samples of "
+                          "every face it makes; moves that would move it more are skipped)."));
   list.addParam(RichFloat("sliver_max_volume_change", defaults.sliver_max_volume_change,
                           "Sliver collapse volume change",
                           "Bound on the volume change of the sliver step that its moves could not give back "

@@ -1,0 +1,139 @@
+#include "union/face_tree.h"
+
+#include "common/closest_point.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace mr::surface_union {
+namespace {
+
+constexpr int kLeafSize = 4;
+
+double box_distance2(const V3& p, const V3& lo, const V3& hi) {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = p[k] < lo[k] ? lo[k] - p[k] : (p[k] > hi[k] ? p[k] - hi[k] : 0);
+    d2 += d * d;
+  }
+  return d2;
+}
+
+}  // namespace
+
+FaceTree::FaceTree(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& faces,
+                   const std::vector<int>& which) {
+  std::vector<std::array<V3, 3>> corners;
+  std::vector<V3> centroids;
+  corners.reserve(which.size());
+  centroids.reserve(which.size());
+  for (int f : which) {
+    const auto& t = faces[size_t(f)];
+    corners.push_back({vertices[t[0]], vertices[t[1]], vertices[t[2]]});
+    const auto& q = corners.back();
+    centroids.push_back({(q[0][0] + q[1][0] + q[2][0]) / 3, (q[0][1] + q[1][1] + q[2][1]) / 3,
+                         (q[0][2] + q[1][2] + q[2][2]) / 3});
+  }
+  if (corners.empty()) return;
+  std::vector<int> order(corners.size());
+  std::iota(order.begin(), order.end(), 0);
+  triangles_ = corners;  // read by build() through `order`, then laid out in leaf order
+  nodes_.reserve(2 * corners.size() / kLeafSize + 2);
+  build(0, int(order.size()), order, centroids);
+  for (size_t i = 0; i < order.size(); ++i) triangles_[i] = corners[size_t(order[i])];
+}
+
+int FaceTree::build(int first, int count, std::vector<int>& order, const std::vector<V3>& centroids) {
+  const int id = int(nodes_.size());
+  nodes_.push_back({});
+  Node node;
+  node.lo = node.hi = triangles_[size_t(order[first])][0];
+  V3 clo = centroids[size_t(order[first])], chi = clo;
+  for (int i = first; i < first + count; ++i) {
+    for (const V3& p : triangles_[size_t(order[i])])
+      for (int k = 0; k < 3; ++k) {
+        node.lo[k] = std::min(node.lo[k], p[k]);
+        node.hi[k] = std::max(node.hi[k], p[k]);
+      }
+    const V3& c = centroids[size_t(order[i])];
+    for (int k = 0; k < 3; ++k) {
+      clo[k] = std::min(clo[k], c[k]);
+      chi[k] = std::max(chi[k], c[k]);
+    }
+  }
+  if (count <= kLeafSize) {
+    node.first = first;
+    node.count = count;
+    nodes_[size_t(id)] = node;
+    return id;
+  }
+  // Median split of the centroids along their longest extent (ties by index: the same
+  // tree on every run).
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
+  const int half = count / 2;
+  std::nth_element(order.begin() + first, order.begin() + first + half, order.begin() + first + count,
+                   [&](int a, int b) {
+                     const double ca = centroids[size_t(a)][axis], cb = centroids[size_t(b)][axis];
+                     return ca < cb || (ca == cb && a < b);
+                   });
+  node.left = build(first, half, order, centroids);
+  node.right = build(first + half, count - half, order, centroids);
+  nodes_[size_t(id)] = node;
+  return id;
+}
+
+double FaceTree::distance(const V3& p, double enough, double limit, int* hint) const {
+  if (nodes_.empty()) return 2 * limit + 1;
+  const double enough2 = enough * enough;
+  double best2 = limit * limit;
+  bool found = false;
+  const Point3 q(p[0], p[1], p[2]);
+  std::array<double, 3> bary;
+  auto distance2 = [&](int i) {
+    const auto& t = triangles_[size_t(i)];
+    return (closest_point_on_triangle(q, Point3(t[0][0], t[0][1], t[0][2]), Point3(t[1][0], t[1][1], t[1][2]),
+                                      Point3(t[2][0], t[2][1], t[2][2]), bary) - q).SquaredNorm();
+  };
+  if (hint && *hint >= 0) {
+    const double d2 = distance2(*hint);
+    if (d2 <= enough2) return std::sqrt(d2);
+    if (d2 <= best2) {
+      best2 = d2;
+      found = true;
+    }
+  }
+  int stack[128];  // depth first, the median split keeps the depth at log2 of the faces
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[size_t(stack[--top])];
+    if (box_distance2(p, node.lo, node.hi) > best2) continue;
+    if (node.left < 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        const double d2 = distance2(i);
+        if (d2 <= best2) {
+          best2 = d2;
+          found = true;
+          if (hint) *hint = i;
+          if (best2 <= enough2) return std::sqrt(best2);
+        }
+      }
+      continue;
+    }
+    // The nearer child last on the stack, so it is searched first.
+    const double dl = box_distance2(p, nodes_[size_t(node.left)].lo, nodes_[size_t(node.left)].hi);
+    const double dr = box_distance2(p, nodes_[size_t(node.right)].lo, nodes_[size_t(node.right)].hi);
+    if (dl < dr) {
+      stack[top++] = node.right;
+      stack[top++] = node.left;
+    } else {
+      stack[top++] = node.left;
+      stack[top++] = node.right;
+    }
+  }
+  return found ? std::sqrt(best2) : 2 * limit + 1;
+}
+
+}  // namespace mr::surface_union

@@ -1,0 +1,40 @@
+// A bounding-box tree over a fixed triangle surface, for the distance of points from it:
+// the sliver step keeps every face it makes near the surface the cut made. A tree, not
+// a grid: the long CAD needles of box.STL would fill a grid's cells.
+#pragma once
+
+#include "union/vec3.h"
+
+#include <array>
+#include <vector>
+
+namespace mr::surface_union {
+
+class FaceTree {
+public:
+  FaceTree() = default;
+  /// Copies the corners of faces `which` (indices into `faces`): the tree does not follow
+  /// later changes of the mesh.
+  FaceTree(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& faces,
+           const std::vector<int>& which);
+  bool empty() const { return nodes_.empty(); }
+
+  /// Distance from p to the nearest face, with two shortcuts: the search ends at the first
+  /// face within `enough` (the result is then at most `enough`), and faces beyond `limit`
+  /// are not looked at (the result is then larger than `limit`).
+  /// `hint` (in and out, start with -1): a face to try first, the one that ended the
+  /// previous search (samples close together are mostly near the same face).
+  double distance(const V3& p, double enough, double limit, int* hint = nullptr) const;
+
+private:
+  struct Node {
+    V3 lo, hi;
+    int left = -1, right = -1;  // children, or -1 in a leaf
+    int first = 0, count = 0;   // a leaf's triangles
+  };
+  int build(int first, int count, std::vector<int>& order, const std::vector<V3>& centroids);
+  std::vector<Node> nodes_;
+  std::vector<std::array<V3, 3>> triangles_;  // in leaf order
+};
+
+}  // namespace mr::surface_union
