@@ -46,7 +46,6 @@ class Collapser {
 public:
   Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change)
       : r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()), grid_(r.vertices, r.faces),
-
         new_mark_(r.faces.size(), 0), angle_(r.faces.size(), -1) {
     double volume = 0;
     for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
@@ -247,8 +246,6 @@ private:
     new_pos_.push_back(q);
   }
   bool stays_clear();
-  /// The proposed faces stay within the deviation bound of the faces they replace, and
-  /// those of them (patch_distance.h).
   /// The proposed faces and the faces they replace are within the deviation bound of
   /// each other: `pointwise`, the farthest any point of the faces moves, when it is known
   /// and within the bound; else the two patches are compared (patch_distance.h).
@@ -256,7 +253,7 @@ private:
   std::vector<Triangle> near_old_, near_new_;  // scratch of stays_near and of collapses
   /// Every proposed face lies within the deviation bound of the surface the cut made:
   /// the replaced faces' distance from it plus `pointwise` (how far any point of them
-  /// moves, when known), or else measured at samples (corners, edge midpoints,
+  /// moves, when known), or else measured at samples (moved corners, edge quarter points,
   /// centroid). Keeps the new faces' distance for keep_cut_distance().
   bool near_cut_surface(double pointwise = 1e300);
   void keep_cut_distance() {
@@ -319,12 +316,13 @@ private:
   // The surface as the cut left it: moves one after another must not take the surface
   // further from it than the deviation bound (each alone is within it).
   // Built at the first move that needs it, over the faces within two rings of a cut face
-  // (the only ones moves come near).
+  // (the only ones moves come near), as they were when the step began.
   FaceTree cut_surface_;
-  std::vector<V3> cut_vertices_;  // the surface the cut made, kept for the tree
+  std::vector<V3> cut_vertices_;
   std::vector<std::array<int, 3>> cut_faces_;
+  std::vector<int> cut_surface_faces_;
   bool cut_surface_built_ = false;
-  void build_cut_surface();
+  void keep_cut_surface();
   std::vector<int> replaced_, near_, scratch_at_v_;
   std::vector<std::array<V3, 2>> scratch_boxes_;
   std::vector<PlacedFace> scratch_before_, scratch_after_;
@@ -368,27 +366,26 @@ bool Collapser::stays_near(double pointwise) {
   return patches_within(near_old_, near_new_, max_dev_);
 }
 
-void Collapser::build_cut_surface() {
-  cut_surface_built_ = true;
-  std::vector<char> in_ring(r_.vertices.size(), 0), taken(r_.faces.size(), 0);
+void Collapser::keep_cut_surface() {
+  cut_vertices_ = r_.vertices;
+  cut_faces_ = r_.faces;
+  cut_distance_.assign(r_.faces.size(), 0);
+  std::vector<char> in_ring(r_.vertices.size(), 0);
   for (int f = 0; f < int(r_.faces.size()); ++f)
     if (cut_[f])
       for (int x : r_.faces[f]) in_ring[x] = 1;
   for (int ring = 0; ring < 2; ++ring) {
     std::vector<char> next = in_ring;
-    for (int f = 0; f < int(r_.faces.size()); ++f) {
-      const auto& t = r_.faces[f];
-      if (alive_[f] && (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]]))
+    for (const auto& t : r_.faces)
+      if (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]])
         for (int x : t) next[x] = 1;
-    }
     in_ring.swap(next);
   }
-  std::vector<int> which;
+  cut_surface_faces_.clear();
   for (int f = 0; f < int(r_.faces.size()); ++f) {
     const auto& t = r_.faces[f];
-    if (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]]) which.push_back(f);
+    if (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]]) cut_surface_faces_.push_back(f);
   }
-  cut_surface_ = FaceTree(cut_vertices_, cut_faces_, which);
 }
 
 bool Collapser::near_cut_surface(double pointwise) {
@@ -398,10 +395,13 @@ bool Collapser::near_cut_surface(double pointwise) {
     move_cut_distance_ = base + pointwise;
     return true;
   }
-  // Samples: corners, edge midpoints, centroid. A face nearer than the farthest sample so
-  // far, or than a quarter of the bound, ends a sample's search: the faces then keep a
-  // bound a little above their distance, and small moves later add to it.
-  if (!cut_surface_built_) build_cut_surface();
+  // Samples: moved corners, edge quarter points, centroid. A face nearer than the farthest
+  // sample so far, or than a quarter of the bound, ends a sample's search: the faces then
+  // keep a bound a little above their distance, and small moves later add to it.
+  if (!cut_surface_built_) {
+    cut_surface_ = FaceTree(cut_vertices_, cut_faces_, cut_surface_faces_);
+    cut_surface_built_ = true;
+  }
   double worst = 0.25 * max_dev_;
   int hint = -1;
   auto sample = [&](const V3& p) {
@@ -777,10 +777,9 @@ bool Collapser::try_flip(int f, int z) {
   replaced_ = {f, g};
   new_ids_ = {{u, d, c}, {d, v, c}};
   new_pos_ = {{P(u), P(d), P(c)}, {P(d), P(v), P(c)}};
-  if (!stays_near()) return false;
   // A flat convex quad (CAD plates) covers the same place after the flip: nothing to check.
   if (!flat_convex_quad(P(u), P(v), P(c), P(d))) {
-    if (!near_cut_surface() || !stays_clear()) return false;
+    if (!stays_near() || !near_cut_surface() || !stays_clear()) return false;
     keep_cut_distance();
   }
   const FlipUndo undo = flip(f, g, u, v, c, d);
@@ -908,8 +907,8 @@ bool Collapser::try_remove_vertex(int v) {
     new_ids_.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});
     new_pos_.push_back({at[t[0]], at[t[1]], at[t[2]]});
   }
-  if (!stays_near()) return refuse();
   if (!cover_unchanged(v)) {
+    if (!stays_near()) return refuse();
     if (!near_cut_surface() || !stays_clear()) return false;
     keep_cut_distance();
   }
@@ -1147,9 +1146,7 @@ int Collapser::run(double threshold) {
   const double budget = volume_budget_;
   const double rounding = std::min(budget, 1e-12 * budget_scale_);
   changed_at_.assign(r_.vertices.size(), 0);
-  cut_vertices_ = r_.vertices;
-  cut_faces_ = r_.faces;
-  cut_distance_.assign(r_.faces.size(), 0);
+  keep_cut_surface();
   for (int round = 0; round < 2; ++round) {
     removal_refused_at_.assign(r_.vertices.size(), -1);
     slide_refused_at_.assign(r_.vertices.size(), -1);
