@@ -323,6 +323,7 @@ private:
   std::vector<int> cut_surface_faces_;
   bool cut_surface_built_ = false;
   void keep_cut_surface();
+  std::vector<char> touching_;  // per vertex: another vertex sits at its place as the step begins
   std::vector<int> replaced_, near_, scratch_at_v_;
   std::vector<std::array<V3, 2>> scratch_boxes_;
   std::vector<PlacedFace> scratch_before_, scratch_after_;
@@ -432,6 +433,12 @@ bool Collapser::near_cut_surface(double pointwise) {
 }
 
 bool Collapser::stays_clear() {
+  // Where two sheets touch (vertices of both at one point), their faces keep their shape
+  // unless the cover stays the same: tilted even slightly, faces that still only touch
+  // there get flagged by MeshLab's self-intersection test.
+  for (int f : replaced_)
+    for (int x : r_.faces[f])
+      if (touching_[x]) return false;
   ++new_stamp_;
   for (int f : replaced_) new_mark_[f] = new_stamp_;
   // One lookup for the whole move: the box around all new faces.
@@ -1147,6 +1154,8 @@ int Collapser::run(double threshold) {
   const double rounding = std::min(budget, 1e-12 * budget_scale_);
   changed_at_.assign(r_.vertices.size(), 0);
   keep_cut_surface();
+  touching_.assign(r_.vertices.size(), 0);
+  for (int x = 0; x < int(r_.vertices.size()); ++x) touching_[x] = vertices_at(P(x)) > 1;
   for (int round = 0; round < 2; ++round) {
     removal_refused_at_.assign(r_.vertices.size(), -1);
     slide_refused_at_.assign(r_.vertices.size(), -1);

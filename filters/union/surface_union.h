@@ -28,7 +28,7 @@ struct Params {
   /// Bound on how far (relative to the bounding-box diagonal) the sliver step may move
   /// the surface from where the cut left it, all its moves together (checked at samples of
   /// every face it makes); moves that would change the shape more are skipped.
-  double sliver_max_deviation = 1.5e-3;
+  double sliver_max_deviation = 2e-3;
   /// Bound on the total volume change of all sliver moves, relative to the volume.
   double sliver_max_volume_change = 1e-6;
   /// Refuse bodies that cross themselves (self_intersection.h). Off: such a body gives an

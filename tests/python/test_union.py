@@ -676,22 +676,18 @@ def test_sliver_step_on_box_stl_bends_lines_onto_plate_edges():
     # box.STL's plates nearly line up: intersection lines run 0.002 beside rows of plate
     # corners, and the strips between them hold needles that no move inside the strip can
     # mend. A line vertex may bend onto a crease vertex within the deviation bound.
-    # Measured: smallest angle 0.440 deg (0.115 before line bends, 0.231 with a deviation
-    # bound of 1e-3 per move, which moves one after another exceeded: up to 5.9e-3 of the
-    # diagonal), 1 face under the input's own 0.449 deg (12 before line bends, 4 with the
-    # bound per move), 796 under 5 deg (994 before line bends, 889 with the bound per
-    # move; the input has 1261). The reading (none under the input's minimum) is
-    # not reached: the one left lies in a facet that earlier moves tilted, bounded by
-    # creases on all sides.
+    # Measured: no face under the input's own 0.449 deg, the reading (12 before line
+    # bends, 4 with a deviation bound of 1e-3 on each move, which moves one after another
+    # exceeded: up to 5.9e-3 of the diagonal; 1 with 1.5e-3 on all moves together); 802
+    # under 5 deg (994 before line bends, 889 with the bound per move; the input has 1261).
     ms, parts = multicomponent("box.STL")
     input_min = angles(ms.mesh(0)).min()
     ms.set_current_mesh(0)
     r = unite(ms, bodies=COMPONENTS)
     out = angles(ms.mesh(ms.mesh_number() - 1)).min(axis=1)
     assert r["min_angle"] == pytest.approx(out.min(), abs=1e-9)
-    assert out.min() >= 0.43
-    assert (out < input_min - 1e-9).sum() <= 1
-    assert (out < 5).sum() <= 800
+    assert out.min() >= input_min - 1e-9
+    assert (out < 5).sum() <= 810
 
 
 def _hausdorff(ms, sampled, target):
@@ -700,18 +696,18 @@ def _hausdorff(ms, sampled, target):
 
 
 @pytest.mark.parametrize("name,bound", [
-    # Measured (fraction of the diagonal; from the union, then to it): the bound is 1.5e-3,
+    # Measured (fraction of the diagonal; from the union, then to it): the bound is 2e-3,
     # checked at samples of every face a move makes (corners, points at a quarter, half and
     # three quarters of each edge, centroid), so faces can leave it a little between them.
-    # Before, the bound was 1e-3 per move:
-    # - rabbit.obj 1.45e-3, 1.46e-3: a collapse on a folded star (a thin fin) had moved the
+    # Before, the bound was 1e-3 on each move alone:
+    # - rabbit.obj 1.96e-3, 1.68e-3: a collapse on a folded star (a thin fin) had moved the
     #   surface 7.9e-3.
-    # - box.STL 1.78e-3, 1.77e-3: moves one after another had bevelled a plate's edge by
+    # - box.STL 2.58e-3, 2.32e-3: moves one after another had bevelled a plate's edge by
     #   5.9e-3 of the diagonal (half the plate's thickness).
-    # - ballA + ballB 1.21e-3, 0.96e-3 (1.9e-3 before).
-    ("rabbit.obj", 2e-3),
-    ("box.STL", 2e-3),
-    ("balls", 2e-3),
+    # - ballA + ballB 1.21e-3, 1.01e-3 (1.9e-3 before).
+    ("rabbit.obj", 3e-3),
+    ("box.STL", 3e-3),
+    ("balls", 3e-3),
 ])
 def test_sliver_step_keeps_the_surface_near_the_exact_union(name, bound):
     if name == "balls":
