@@ -314,16 +314,22 @@ private:
   std::vector<std::vector<int>> vf_;
   FaceGrid grid_;  // where the faces are now, for the crossing checks
   // The surface as the cut left it: moves one after another must not take the surface
-  // further from it than the deviation bound (each alone is within it).
-  // Built at the first move that needs it, over the faces within two rings of a cut face
-  // (the only ones moves come near), as they were when the step began.
+  // further from it than the deviation bound (each alone is within it). Over the faces
+  // within two rings of a cut face, the only ones moves come near.
   FaceTree cut_surface_;
-  std::vector<V3> cut_vertices_;
-  std::vector<std::array<int, 3>> cut_faces_;
-  std::vector<int> cut_surface_faces_;
-  bool cut_surface_built_ = false;
+  /// At the step's start: the tree over the cut's surface, the faces' distances (0) and
+  /// the touching vertices.
   void keep_cut_surface();
   std::vector<char> touching_;  // per vertex: another vertex sits at its place as the step begins
+  /// Where two sheets touch (vertices of both at one point), their faces keep their shape
+  /// unless the cover stays the same: tilted even slightly, faces that still only touch
+  /// there get flagged by MeshLab's self-intersection test.
+  bool replaces_touching_face() const {
+    for (int f : replaced_)
+      for (int x : r_.faces[f])
+        if (touching_[x]) return true;
+    return false;
+  }
   std::vector<int> replaced_, near_, scratch_at_v_;
   std::vector<std::array<V3, 2>> scratch_boxes_;
   std::vector<PlacedFace> scratch_before_, scratch_after_;
@@ -368,9 +374,9 @@ bool Collapser::stays_near(double pointwise) {
 }
 
 void Collapser::keep_cut_surface() {
-  cut_vertices_ = r_.vertices;
-  cut_faces_ = r_.faces;
   cut_distance_.assign(r_.faces.size(), 0);
+  touching_.assign(r_.vertices.size(), 0);
+  for (int x = 0; x < int(r_.vertices.size()); ++x) touching_[x] = vertices_at(P(x)) > 1;
   std::vector<char> in_ring(r_.vertices.size(), 0);
   for (int f = 0; f < int(r_.faces.size()); ++f)
     if (cut_[f])
@@ -382,11 +388,12 @@ void Collapser::keep_cut_surface() {
         for (int x : t) next[x] = 1;
     in_ring.swap(next);
   }
-  cut_surface_faces_.clear();
+  std::vector<int> near_cut;
   for (int f = 0; f < int(r_.faces.size()); ++f) {
     const auto& t = r_.faces[f];
-    if (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]]) cut_surface_faces_.push_back(f);
+    if (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]]) near_cut.push_back(f);
   }
+  cut_surface_ = FaceTree(r_.vertices, r_.faces, near_cut);
 }
 
 bool Collapser::near_cut_surface(double pointwise) {
@@ -399,10 +406,6 @@ bool Collapser::near_cut_surface(double pointwise) {
   // Samples: moved corners, edge quarter points, centroid. A face nearer than the farthest
   // sample so far, or than a quarter of the bound, ends a sample's search: the faces then
   // keep a bound a little above their distance, and small moves later add to it.
-  if (!cut_surface_built_) {
-    cut_surface_ = FaceTree(cut_vertices_, cut_faces_, cut_surface_faces_);
-    cut_surface_built_ = true;
-  }
   double worst = 0.25 * max_dev_;
   int hint = -1;
   auto sample = [&](const V3& p) {
@@ -433,12 +436,6 @@ bool Collapser::near_cut_surface(double pointwise) {
 }
 
 bool Collapser::stays_clear() {
-  // Where two sheets touch (vertices of both at one point), their faces keep their shape
-  // unless the cover stays the same: tilted even slightly, faces that still only touch
-  // there get flagged by MeshLab's self-intersection test.
-  for (int f : replaced_)
-    for (int x : r_.faces[f])
-      if (touching_[x]) return false;
   ++new_stamp_;
   for (int f : replaced_) new_mark_[f] = new_stamp_;
   // One lookup for the whole move: the box around all new faces.
@@ -679,7 +676,8 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
     for (int f : fw)
       if (!has_corner(r_.faces[f], v)) propose(f, w, w, target);
   if (!cover_unchanged(v, moved ? w : -1)) {
-    if (!near_cut_surface(std::max(norm(sub3(target, P(v))), norm(p))) || !stays_clear()) return false;
+    if (replaces_touching_face() || !near_cut_surface(std::max(norm(sub3(target, P(v))), norm(p))) || !stays_clear())
+      return false;
     keep_cut_distance();
   }
   const double budget_before = volume_budget_;
@@ -786,7 +784,7 @@ bool Collapser::try_flip(int f, int z) {
   new_pos_ = {{P(u), P(d), P(c)}, {P(d), P(v), P(c)}};
   // A flat convex quad (CAD plates) covers the same place after the flip: nothing to check.
   if (!flat_convex_quad(P(u), P(v), P(c), P(d))) {
-    if (!stays_near() || !near_cut_surface() || !stays_clear()) return false;
+    if (replaces_touching_face() || !stays_near() || !near_cut_surface() || !stays_clear()) return false;
     keep_cut_distance();
   }
   const FlipUndo undo = flip(f, g, u, v, c, d);
@@ -915,7 +913,7 @@ bool Collapser::try_remove_vertex(int v) {
     new_pos_.push_back({at[t[0]], at[t[1]], at[t[2]]});
   }
   if (!cover_unchanged(v)) {
-    if (!stays_near()) return refuse();
+    if (replaces_touching_face() || !stays_near()) return refuse();
     if (!near_cut_surface() || !stays_clear()) return false;
     keep_cut_distance();
   }
@@ -1102,7 +1100,7 @@ bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
   // further than the bound: then the patches are compared, unless they cover the same).
   if (!cover_unchanged(x)) {
     const double moved = norm(sub3(at, P(x)));
-    if (!stays_near(moved) || !near_cut_surface(moved) || !stays_clear()) return false;
+    if (replaces_touching_face() || !stays_near(moved) || !near_cut_surface(moved) || !stays_clear()) return false;
     keep_cut_distance();
   }
   place(x, at);
@@ -1154,8 +1152,6 @@ int Collapser::run(double threshold) {
   const double rounding = std::min(budget, 1e-12 * budget_scale_);
   changed_at_.assign(r_.vertices.size(), 0);
   keep_cut_surface();
-  touching_.assign(r_.vertices.size(), 0);
-  for (int x = 0; x < int(r_.vertices.size()); ++x) touching_[x] = vertices_at(P(x)) > 1;
   for (int round = 0; round < 2; ++round) {
     removal_refused_at_.assign(r_.vertices.size(), -1);
     slide_refused_at_.assign(r_.vertices.size(), -1);
