@@ -1,7 +1,5 @@
 #include "union/face_tree.h"
 
-#include "common/closest_point.h"
-
 #include <algorithm>
 #include <numeric>
 
@@ -37,20 +35,24 @@ FaceTree::FaceTree(const std::vector<V3>& vertices, const std::vector<std::array
   if (corners.empty()) return;
   std::vector<int> order(corners.size());
   std::iota(order.begin(), order.end(), 0);
-  triangles_ = corners;  // read by build() through `order`, then laid out in leaf order
   nodes_.reserve(2 * corners.size() / kLeafSize + 2);
-  build(0, int(order.size()), order, centroids);
-  for (size_t i = 0; i < order.size(); ++i) triangles_[i] = corners[size_t(order[i])];
+  build(0, int(order.size()), order, corners, centroids);
+  triangles_.reserve(order.size());
+  for (int i : order) {
+    const auto& t = corners[size_t(i)];
+    triangles_.emplace_back(t[0], t[1], t[2]);
+  }
 }
 
-int FaceTree::build(int first, int count, std::vector<int>& order, const std::vector<V3>& centroids) {
+int FaceTree::build(int first, int count, std::vector<int>& order, const std::vector<std::array<V3, 3>>& corners,
+                    const std::vector<V3>& centroids) {
   const int id = int(nodes_.size());
   nodes_.push_back({});
   Node node;
-  node.lo = node.hi = triangles_[size_t(order[first])][0];
+  node.lo = node.hi = corners[size_t(order[first])][0];
   V3 clo = centroids[size_t(order[first])], chi = clo;
   for (int i = first; i < first + count; ++i) {
-    for (const V3& p : triangles_[size_t(order[i])])
+    for (const V3& p : corners[size_t(order[i])])
       for (int k = 0; k < 3; ++k) {
         node.lo[k] = std::min(node.lo[k], p[k]);
         node.hi[k] = std::max(node.hi[k], p[k]);
@@ -78,10 +80,18 @@ int FaceTree::build(int first, int count, std::vector<int>& order, const std::ve
                      const double ca = centroids[size_t(a)][axis], cb = centroids[size_t(b)][axis];
                      return ca < cb || (ca == cb && a < b);
                    });
-  node.left = build(first, half, order, centroids);
-  node.right = build(first + half, count - half, order, centroids);
+  node.left = build(first, half, order, corners, centroids);
+  node.right = build(first + half, count - half, order, corners, centroids);
   nodes_[size_t(id)] = node;
   return id;
+}
+
+bool FaceTree::holds_within(int hint, const std::array<V3, 3>& abc, double d) const {
+  if (hint < 0 || hint >= int(triangles_.size())) return false;
+  const PreparedTriangle& t = triangles_[size_t(hint)];
+  if (t.degenerate()) return false;  // its distance is to the corners only, not convex
+  const double d2 = d * d;
+  return t.squared_distance(abc[0]) <= d2 && t.squared_distance(abc[1]) <= d2 && t.squared_distance(abc[2]) <= d2;
 }
 
 double FaceTree::distance(const V3& p, double enough, double limit, int* hint) const {
@@ -89,13 +99,7 @@ double FaceTree::distance(const V3& p, double enough, double limit, int* hint) c
   const double enough2 = enough * enough;
   double best2 = limit * limit;
   bool found = false;
-  const Point3 q(p[0], p[1], p[2]);
-  std::array<double, 3> bary;
-  auto distance2 = [&](int i) {
-    const auto& t = triangles_[size_t(i)];
-    return (closest_point_on_triangle(q, Point3(t[0][0], t[0][1], t[0][2]), Point3(t[1][0], t[1][1], t[1][2]),
-                                      Point3(t[2][0], t[2][1], t[2][2]), bary) - q).SquaredNorm();
-  };
+  auto distance2 = [&](int i) { return triangles_[size_t(i)].squared_distance(p); };
   if (hint && *hint >= 0) {
     const double d2 = distance2(*hint);
     if (d2 <= enough2) return std::sqrt(d2);

@@ -3,6 +3,7 @@
 // a grid: the long CAD needles of box.STL would fill a grid's cells.
 #pragma once
 
+#include "union/triangle_distance.h"
 #include "union/vec3.h"
 
 #include <array>
@@ -26,15 +27,20 @@ public:
   /// previous search (samples close together are mostly near the same face).
   double distance(const V3& p, double enough, double limit, int* hint = nullptr) const;
 
+  /// Whole triangle (a, b, c) lies within `d` of the face that ended a search with `hint`
+  /// (false if there is none): its corners do, and the distance from a triangle is convex.
+  bool holds_within(int hint, const std::array<V3, 3>& abc, double d) const;
+
 private:
   struct Node {
     V3 lo, hi;
     int left = -1, right = -1;  // children, or -1 in a leaf
     int first = 0, count = 0;   // a leaf's triangles
   };
-  int build(int first, int count, std::vector<int>& order, const std::vector<V3>& centroids);
+  int build(int first, int count, std::vector<int>& order, const std::vector<std::array<V3, 3>>& corners,
+            const std::vector<V3>& centroids);
   std::vector<Node> nodes_;
-  std::vector<std::array<V3, 3>> triangles_;  // in leaf order
+  std::vector<PreparedTriangle> triangles_;  // in leaf order
 };
 
 }  // namespace mr::surface_union

@@ -1,21 +1,14 @@
 #include "union/patch_distance.h"
 
-#include "common/closest_point.h"
+#include "union/triangle_distance.h"
 
 namespace mr::surface_union {
 namespace {
 
-Point3 point(const V3& p) { return Point3(p[0], p[1], p[2]); }
-
 // `hint`: the face that held the previous sample, tried first (samples of one face are
 // mostly near the same face).
-bool near_some_face(const V3& p, const std::vector<Triangle>& faces, double limit2, size_t& hint) {
-  const Point3 q = point(p);
-  std::array<double, 3> bary;
-  auto near = [&](size_t i) {
-    const Triangle& t = faces[i];
-    return (closest_point_on_triangle(q, point(t[0]), point(t[1]), point(t[2]), bary) - q).SquaredNorm() <= limit2;
-  };
+bool near_some_face(const V3& p, const std::vector<PreparedTriangle>& faces, double limit2, size_t& hint) {
+  auto near = [&](size_t i) { return faces[i].squared_distance(p) <= limit2; };
   if (hint < faces.size() && near(hint)) return true;
   for (size_t i = 0; i < faces.size(); ++i)
     if (i != hint && near(i)) {
@@ -25,7 +18,10 @@ bool near_some_face(const V3& p, const std::vector<Triangle>& faces, double limi
   return false;
 }
 
-bool samples_within(const std::vector<Triangle>& from, const std::vector<Triangle>& to, double limit2) {
+bool samples_within(const std::vector<Triangle>& from, const std::vector<Triangle>& to_faces, double limit2) {
+  std::vector<PreparedTriangle> to;
+  to.reserve(to_faces.size());
+  for (const Triangle& t : to_faces) to.emplace_back(t[0], t[1], t[2]);
   size_t hint = 0;
   for (const Triangle& t : from) {
     V3 g;
