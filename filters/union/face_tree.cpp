@@ -108,12 +108,19 @@ double FaceTree::distance(const V3& p, double enough, double limit, int* hint) c
       found = true;
     }
   }
-  int stack[128];  // depth first, the median split keeps the depth at log2 of the faces
+  // Depth first, each node with its box's distance (computed once, by its parent); the
+  // median split keeps the depth at log2 of the faces.
+  struct Entry {
+    int node;
+    double d2;
+  };
+  Entry stack[128];
   int top = 0;
-  stack[top++] = 0;
+  stack[top++] = {0, box_distance2(p, nodes_[0].lo, nodes_[0].hi)};
   while (top > 0) {
-    const Node& node = nodes_[size_t(stack[--top])];
-    if (box_distance2(p, node.lo, node.hi) > best2) continue;
+    const Entry e = stack[--top];
+    if (e.d2 > best2) continue;
+    const Node& node = nodes_[size_t(e.node)];
     if (node.left < 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         const double d2 = distance2(i);
@@ -127,15 +134,13 @@ double FaceTree::distance(const V3& p, double enough, double limit, int* hint) c
       continue;
     }
     // The nearer child last on the stack, so it is searched first.
-    const double dl = box_distance2(p, nodes_[size_t(node.left)].lo, nodes_[size_t(node.left)].hi);
-    const double dr = box_distance2(p, nodes_[size_t(node.right)].lo, nodes_[size_t(node.right)].hi);
-    if (dl < dr) {
-      stack[top++] = node.right;
-      stack[top++] = node.left;
-    } else {
-      stack[top++] = node.left;
-      stack[top++] = node.right;
-    }
+    const Entry l{node.left, box_distance2(p, nodes_[size_t(node.left)].lo, nodes_[size_t(node.left)].hi)};
+    const Entry r{node.right, box_distance2(p, nodes_[size_t(node.right)].lo, nodes_[size_t(node.right)].hi)};
+    const bool left_first = l.d2 < r.d2;
+    const Entry& near = left_first ? l : r;
+    const Entry& far = left_first ? r : l;
+    if (far.d2 <= best2) stack[top++] = far;
+    if (near.d2 <= best2) stack[top++] = near;
   }
   return found ? std::sqrt(best2) : 2 * limit + 1;
 }

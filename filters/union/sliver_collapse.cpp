@@ -37,6 +37,12 @@ constexpr double kMinSlideGain = 0.1;
 // Faces at a vertex whose normals differ by more than ~30 degrees: it lies on a crease.
 constexpr double kCreaseCos = 0.866;
 
+/// Boxes [alo, ahi] and [blo, bhi] have no point in common.
+inline bool boxes_apart(const V3& alo, const V3& ahi, const V3& blo, const V3& bhi) {
+  return ahi[0] < blo[0] || bhi[0] < alo[0] || ahi[1] < blo[1] || bhi[1] < alo[1] || ahi[2] < blo[2] ||
+         bhi[2] < alo[2];
+}
+
 /// Vertex x is a corner of face t. Written out: std::find on the three corners was an
 /// out-of-line call, run a few hundred thousand times by the collapse candidates.
 inline bool has_corner(const std::array<int, 3>& t, int x) { return t[0] == x || t[1] == x || t[2] == x; }
@@ -459,21 +465,24 @@ bool Collapser::stays_clear() {
     // that share a corner with the move.
     const auto& t = r_.faces[g];
     const V3 gq[3] = {P(t[0]), P(t[1]), P(t[2])};
-    const int kg = axis_plane(gq);  // CAD plates: most faces nearby lie in such planes
     V3 glo = gq[0], ghi = gq[0];
     for (int z = 1; z < 3; ++z)
       for (int k = 0; k < 3; ++k) { glo[k] = std::min(glo[k], gq[z][k]); ghi[k] = std::max(ghi[k], gq[z][k]); }
+    // (The grid's cells are coarser than the move: many faces it gives are off its box.)
+    if (boxes_apart(glo, ghi, lo, hi)) continue;
+    int kg = -2;  // axis_plane(gq), once a new face is near
     for (size_t i = 0; i < new_ids_.size(); ++i) {
-      bool apart = false;
-      for (int k = 0; k < 3; ++k) apart |= ghi[k] < boxes[i][0][k] || boxes[i][1][k] < glo[k];
-      if (apart) continue;
+      if (boxes_apart(glo, ghi, boxes[i][0], boxes[i][1])) continue;
+      if (kg == -2) kg = axis_plane(gq);  // CAD plates: most faces nearby lie in such planes
       if (kg >= 0 && meets_axis_plane_only_where_it_was(i, kg, gq[0][kg])) continue;
       if (triangles_meet(new_ids_[i], new_pos_[i].data(), t, gq)) return false;
     }
   }
   for (size_t i = 0; i < new_ids_.size(); ++i)
     for (size_t j = 0; j < i; ++j)
-      if (triangles_meet(new_ids_[i], new_pos_[i].data(), new_ids_[j], new_pos_[j].data())) return false;
+      if (!boxes_apart(boxes[i][0], boxes[i][1], boxes[j][0], boxes[j][1]) &&
+          triangles_meet(new_ids_[i], new_pos_[i].data(), new_ids_[j], new_pos_[j].data()))
+        return false;
   return true;
 }
 
