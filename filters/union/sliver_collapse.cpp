@@ -345,6 +345,16 @@ private:
   std::vector<long> removal_refused_at_;  // per vertex: clock of its refused removal, or -1
   std::vector<long> slide_refused_at_;    // per vertex: clock of its refused slide on a line, or -1
   std::unordered_map<uint64_t, long> collapse_refused_at_;  // (v, w): clock of the refused collapse of v onto w
+  /// The last collapses dry runs accepted (a sliver weighs up to six): target (relative to
+  /// w) and six times the volume change, valid while the clock stands (no face changed).
+  struct Weighed {
+    int v = -1, w = -1;
+    long clock = -1;
+    V3 p{};
+    double dv = 0;
+  };
+  std::array<Weighed, 6> weighed_;
+  size_t next_weighed_ = 0;
   std::vector<std::array<int, 3>> new_ids_;
   std::vector<std::array<V3, 3>> new_pos_;
   std::vector<int> new_mark_;  // per face: stamp of the move that replaces it
@@ -660,21 +670,34 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   // curved star), w itself, with the volume given back by a neighbour or the budget.
   V3 p{0, 0, 0};
   double dv = 0;
-  bool ok = false;
-  if (w_free && gg > 0) {
-    for (int k = 0; k < 3; ++k) p[k] = s_old / gg * g[k];
-    ok = acceptable(p, dv);
-  }
-  if (!ok) {
-    p = {0, 0, 0};
-    if (!acceptable(p, dv)) return refuse();
+  // The chosen candidate was just weighed in a dry run, with nothing changed since.
+  const Weighed* weighed = nullptr;
+  if (apply)
+    for (const Weighed& c : weighed_)
+      if (c.v == v && c.w == w && c.clock == clock_) weighed = &c;
+  if (weighed) {
+    p = weighed->p;
+    dv = weighed->dv;
+  } else {
+    bool ok = false;
+    if (w_free && gg > 0) {
+      for (int k = 0; k < 3; ++k) p[k] = s_old / gg * g[k];
+      ok = acceptable(p, dv);
+    }
+    if (!ok) {
+      p = {0, 0, 0};
+      if (!acceptable(p, dv)) return refuse();
+    }
   }
   const V3 target{o[0] + p[0], o[1] + p[1], o[2] + p[2]};
   const bool moved = p[0] != 0 || p[1] != 0 || p[2] != 0;
   if (std::fabs(dv) / 6 > volume_budget_) return refuse();
   // Score: the volume change plus the volume swept by the compensating move.
   if (dv_out) *dv_out = std::fabs(dv) / 6 + norm(p) * std::sqrt(gg) / 6;
-  if (!apply) return true;
+  if (!apply) {
+    weighed_[next_weighed_++ % weighed_.size()] = {v, w, clock_, p, dv};
+    return true;
+  }
   // The new star must not run into the rest of the surface (thin plates, nearly
   // touching bodies): checked exactly before anything changes.
   start_move();
