@@ -49,21 +49,22 @@ int FaceTree::build(int first, int count, std::vector<int>& order, const std::ve
   const int id = int(nodes_.size());
   nodes_.push_back({});
   Node node;
-  node.lo = node.hi = corners[size_t(order[first])][0];
   V3 clo = centroids[size_t(order[first])], chi = clo;
   for (int i = first; i < first + count; ++i) {
-    for (const V3& p : corners[size_t(order[i])])
-      for (int k = 0; k < 3; ++k) {
-        node.lo[k] = std::min(node.lo[k], p[k]);
-        node.hi[k] = std::max(node.hi[k], p[k]);
-      }
     const V3& c = centroids[size_t(order[i])];
     for (int k = 0; k < 3; ++k) {
       clo[k] = std::min(clo[k], c[k]);
       chi[k] = std::max(chi[k], c[k]);
     }
   }
-  if (count <= kLeafSize) {
+  if (count <= kLeafSize) {  // a leaf's box from its corners, an inner node's from its children's
+    node.lo = node.hi = corners[size_t(order[first])][0];
+    for (int i = first; i < first + count; ++i)
+      for (const V3& p : corners[size_t(order[i])])
+        for (int k = 0; k < 3; ++k) {
+          node.lo[k] = std::min(node.lo[k], p[k]);
+          node.hi[k] = std::max(node.hi[k], p[k]);
+        }
     node.first = first;
     node.count = count;
     nodes_[size_t(id)] = node;
@@ -82,16 +83,13 @@ int FaceTree::build(int first, int count, std::vector<int>& order, const std::ve
                    });
   node.left = build(first, half, order, corners, centroids);
   node.right = build(first + half, count - half, order, corners, centroids);
+  const Node &l = nodes_[size_t(node.left)], &r = nodes_[size_t(node.right)];
+  for (int k = 0; k < 3; ++k) {
+    node.lo[k] = std::min(l.lo[k], r.lo[k]);
+    node.hi[k] = std::max(l.hi[k], r.hi[k]);
+  }
   nodes_[size_t(id)] = node;
   return id;
-}
-
-bool FaceTree::holds_within(int hint, const std::array<V3, 3>& abc, double d) const {
-  if (hint < 0 || hint >= int(triangles_.size())) return false;
-  const PreparedTriangle& t = triangles_[size_t(hint)];
-  if (t.degenerate()) return false;  // its distance is to the corners only, not convex
-  const double d2 = d * d;
-  return t.squared_distance(abc[0]) <= d2 && t.squared_distance(abc[1]) <= d2 && t.squared_distance(abc[2]) <= d2;
 }
 
 double FaceTree::distance(const V3& p, double enough, double limit, int* hint) const {

@@ -27,10 +27,6 @@ public:
   /// previous search (samples close together are mostly near the same face).
   double distance(const V3& p, double enough, double limit, int* hint = nullptr) const;
 
-  /// Whole triangle (a, b, c) lies within `d` of the face that ended a search with `hint`
-  /// (false if there is none): its corners do, and the distance from a triangle is convex.
-  bool holds_within(int hint, const std::array<V3, 3>& abc, double d) const;
-
 private:
   struct Node {
     V3 lo, hi;

@@ -430,8 +430,6 @@ bool Collapser::near_cut_surface(double pointwise) {
   };
   for (size_t i = 0; i < new_pos_.size(); ++i) {
     const auto& q = new_pos_[i];
-    // Within the bound of one face, all of it is: its samples would not change `worst`.
-    if (cut_surface_.holds_within(hint, q, worst)) continue;
     const V3 g{(q[0][0] + q[1][0] + q[2][0]) / 3, (q[0][1] + q[1][1] + q[2][1]) / 3, (q[0][2] + q[1][2] + q[2][2]) / 3};
     if (!sample(g)) return false;
     for (int z = 0; z < 3; ++z) {

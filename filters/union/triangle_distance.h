@@ -21,8 +21,6 @@ public:
     if (!degenerate_) unit_normal_ = {n[0] / len, n[1] / len, n[2] / len};
   }
 
-  /// No interior (corners in a line): the distance is then to the nearest corner.
-  bool degenerate() const { return degenerate_; }
   double squared_distance(const V3& p) const {
     const V3 ap = sub3(p, a_);
     const double d1 = dot(ab_, ap), d2 = dot(ac_, ap);
