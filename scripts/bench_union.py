@@ -3,9 +3,10 @@
 (chained pairwise) and manifold3d's batch union, in the same run.
 
 Cases: the shared multicomponent meshes and a cluster of overlapping spheres swept in size.
-Prints a markdown table and writes benchmarks/union.md. Times are best of --repeats, in
-seconds; ratios are ours / theirs (below 1: we are faster). The volume column is our
-volume relative to manifold3d's (cavities filled, as our filter returns the outer surface).
+Prints a markdown table and writes benchmarks/union.md. Times are best of --repeats (ours and
+manifold3d in turns; cases under 0.1 s get --small-repeats turns), in seconds; ratios are
+ours / theirs (below 1: we are faster). The volume column is our volume relative to
+manifold3d's (cavities filled, as our filter returns the outer surface).
 """
 import argparse
 import datetime
@@ -82,6 +83,22 @@ def time_manifold(bodies, repeats):
     return best, volume
 
 
+def interleaved_best(bodies, repeats, small_repeats):
+    """Best times of ours and manifold3d, run in turns (load that comes and goes on a shared
+    machine then hits both alike). Millisecond cases get small_repeats turns."""
+    ours = man = float("inf")
+    turns, turn = repeats, 0
+    while turn < turns:
+        t, result, volume = time_ours(bodies, 1)
+        ours = min(ours, t)
+        t, man_volume = time_manifold(bodies, 1)
+        man = min(man, t)
+        turn += 1
+        if turn == 1 and max(ours, man) < 0.1:
+            turns = max(turns, small_repeats)
+    return ours, man, result, volume, man_volume
+
+
 def time_meshlab(bodies, repeats):
     best = float("inf")
     for _ in range(repeats):
@@ -105,6 +122,8 @@ def main():
     ap.add_argument("--subdiv", type=int, default=3, help="sphere subdivision (3: 1280 triangles each)")
     ap.add_argument("--meshlab-max-bodies", type=int, default=50,
                     help="skip MeshLab's chained union above this many bodies (it grows quadratically)")
+    ap.add_argument("--small-repeats", type=int, default=15,
+                    help="repeats of cases whose runs take under 0.1 s (their best of a few is noise)")
     ap.add_argument("--out", default=str(REPO / "benchmarks" / "union.md"))
     args = ap.parse_args()
     cases = [("ballA + ballB", bodies_of("balls")), ("box.STL (10 plates)", bodies_of("box.STL")),
@@ -119,8 +138,7 @@ def main():
             "|---|---|---|---|---|---|---|---|---|---|"]
     for name, bodies in cases:
         tris = sum(len(f) for _, f in bodies)
-        ours, result, volume = time_ours(bodies, args.repeats)
-        man, man_volume = time_manifold(bodies, args.repeats)
+        ours, man, result, volume, man_volume = interleaved_best(bodies, args.repeats, args.small_repeats)
         if len(bodies) <= args.meshlab_max_bodies:
             ml = time_meshlab(bodies, args.repeats)
             ml_text, ratio_ml = f"{ml:.3f}", f"{ours / ml:.3f}"
@@ -134,7 +152,8 @@ def main():
         "## Union of intersecting bodies (`scripts/bench_union.py`)", "",
         f"Command: `.venv/bin/python scripts/bench_union.py --sizes {args.sizes} --repeats {args.repeats}` — "
         f"{datetime.date.today()}, "
-        f"{platform.machine()} {platform.system()}, 2 cores shared with other jobs; best of {args.repeats}. "
+        f"{platform.machine()} {platform.system()}, 2 cores shared with other jobs; best of {args.repeats}, "
+        f"ours and manifold3d in turns, cases under 0.1 s best of {args.small_repeats}. "
         "Spheres: radius 0.5 (icospheres, subdivision 3 = 1280 triangles unless N@S says otherwise), random "
         "centres in a cube of side 0.9 n^(1/3) (seed 1). Ours: `generate_surface_intersection_union(bodies=1)` on one "
         "layer holding all bodies, default sliver step. MeshLab: `generate_boolean_union` chained over the "
