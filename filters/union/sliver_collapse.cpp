@@ -476,8 +476,6 @@ bool Collapser::stays_clear() {
     V3 glo = gq[0], ghi = gq[0];
     for (int z = 1; z < 3; ++z)
       for (int k = 0; k < 3; ++k) { glo[k] = std::min(glo[k], gq[z][k]); ghi[k] = std::max(ghi[k], gq[z][k]); }
-    // (The grid's cells are coarser than the move: many faces it gives are off its box.)
-    if (boxes_apart(glo, ghi, lo, hi)) continue;
     int kg = -2;  // axis_plane(gq), once a new face is near
     for (size_t i = 0; i < new_ids_.size(); ++i) {
       if (boxes_apart(glo, ghi, boxes[i][0], boxes[i][1])) continue;
