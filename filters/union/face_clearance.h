@@ -44,6 +44,8 @@ public:
   /// Faces whose box, as of their last add, overlaps [lo, hi].
   void near(const V3& lo, const V3& hi, std::vector<int>& out);
   void box(int f, V3& lo, V3& hi) const;
+  /// Face f's box as of its last add (its current one, for a face refiled after each change).
+  const std::array<V3, 2>& filed_box(int f) const { return boxes_[size_t(f)]; }
 
 private:
   static constexpr int kLevels = 12;

@@ -472,14 +472,15 @@ bool Collapser::stays_clear() {
     // Every pair, also with the star's own ring: a fold at a crease crosses faces
     // that share a corner with the move.
     const auto& t = r_.faces[g];
-    const V3 gq[3] = {P(t[0]), P(t[1]), P(t[2])};
-    V3 glo = gq[0], ghi = gq[0];
-    for (int z = 1; z < 3; ++z)
-      for (int k = 0; k < 3; ++k) { glo[k] = std::min(glo[k], gq[z][k]); ghi[k] = std::max(ghi[k], gq[z][k]); }
-    int kg = -2;  // axis_plane(gq), once a new face is near
+    const auto& [glo, ghi] = grid_.filed_box(g);  // faces are refiled after every change
+    V3 gq[3];
+    int kg = -2;  // axis_plane(gq), once a new face is near (gq filled then)
     for (size_t i = 0; i < new_ids_.size(); ++i) {
       if (boxes_apart(glo, ghi, boxes[i][0], boxes[i][1])) continue;
-      if (kg == -2) kg = axis_plane(gq);  // CAD plates: most faces nearby lie in such planes
+      if (kg == -2) {
+        for (int z = 0; z < 3; ++z) gq[z] = P(t[z]);
+        kg = axis_plane(gq);  // CAD plates: most faces nearby lie in such planes
+      }
       if (kg >= 0 && meets_axis_plane_only_where_it_was(i, kg, gq[0][kg])) continue;
       if (triangles_meet(new_ids_[i], new_pos_[i].data(), t, gq)) return false;
     }
