@@ -134,7 +134,23 @@ private:
   }
   /// Moves v onto w if allowed; with `apply` false only checks, and `dv` gets the volume change.
   bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
-  bool try_flip(int f, int z);      // flips side z of face f
+  /// Flips side z of face f.
+  bool try_flip(int f, int z) {
+    return unless_refused_now(flip_refused_now_[size_t(3 * f + z)], [&] { return attempt_flip(f, z); });
+  }
+  bool attempt_flip(int f, int z);
+  /// A move refused at this clock (in `at`) is refused again without trying: nothing has
+  /// changed since. Every change of a face moves the clock, and so does each round (the
+  /// volume budget changes only with faces or between rounds). Neighbouring slivers try
+  /// the same moves of their shared corners one after the other.
+  template <class Attempt>
+  bool unless_refused_now(long& at, Attempt attempt) {
+    if (at == clock_) return false;
+    if (attempt()) return true;
+    at = clock_;
+    return false;
+  }
+  std::vector<long> flip_refused_now_, removal_refused_now_, slide_refused_now_, relocation_refused_now_;
   /// Who may give back the volume a flip of (u, v) to (c, d) changes, in the order
   /// tried: the four corners, then the free vertices one ring further (after the flip),
   /// each once (a vertex that cannot give the volume back fails the same way again).
@@ -183,7 +199,10 @@ private:
   /// Moves free vertex x towards the centroid of its ring, projected so that the volume
   /// stays the same (perpendicular to its star's volume gradient), when that raises the
   /// worst angle of its faces and flips none.
-  bool try_relocate(int x);
+  bool try_relocate(int x) {
+    return unless_refused_now(relocation_refused_now_[size_t(x)], [&] { return attempt_relocation(x); });
+  }
+  bool attempt_relocation(int x);
   /// A triple point next to sliver corner c (a junction j joined to c by a line edge)
   /// moves onto c: the wedge between two lines leaving j is where their vertices come
   /// too close to collapse (j is a third common neighbour); after the move they are
@@ -194,12 +213,18 @@ private:
   /// has: where the collapse of a sliver's short edge is refused because its ends have a
   /// third common neighbour (the link condition) or a face of the fan would turn over,
   /// another triangulation of the same hole often exists.
-  bool try_remove_vertex(int v);
+  bool try_remove_vertex(int v) {
+    return unless_refused_now(removal_refused_now_[size_t(v)], [&] { return attempt_removal(v); });
+  }
+  bool attempt_removal(int v);
   /// Moves x (on one line, degree 2) part of the way towards one of its two line
   /// neighbours, to the place among a few along each line edge that raises the worst
   /// angle of its faces most: where two lines pass closer than a sliver allows, their
   /// vertices can be staggered although none may leave its line.
-  bool try_slide_on_line(int x);
+  bool try_slide_on_line(int x) {
+    return unless_refused_now(slide_refused_now_[size_t(x)], [&] { return attempt_slide_on_line(x); });
+  }
+  bool attempt_slide_on_line(int x);
   /// The corners of x's faces may have new options in the next pass.
   void mark_around(int x) {
     for (int f : vf_[x])
@@ -763,7 +788,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   return true;
 }
 
-bool Collapser::try_flip(int f, int z) {
+bool Collapser::attempt_flip(int f, int z) {
   const int u = r_.faces[f][z], v = r_.faces[f][(z + 1) % 3], c = r_.faces[f][(z + 2) % 3];
   if (line_.count(ekey(u, v)) ) return false;
   int g = -1;
@@ -856,7 +881,7 @@ bool Collapser::try_junction_slide(int c) {
   return false;
 }
 
-bool Collapser::try_remove_vertex(int v) {
+bool Collapser::attempt_removal(int v) {
   const int ld = line_degree_[v];
   if (ld != 0 && ld != 2) return false;
   // Scratch members: this runs for every sliver corner, pass after pass.
@@ -988,7 +1013,7 @@ bool Collapser::try_remove_vertex(int v) {
   return true;
 }
 
-bool Collapser::try_slide_on_line(int x) {
+bool Collapser::attempt_slide_on_line(int x) {
   if (line_degree_[x] != 2) return false;
   std::vector<int>& fx = slide_faces_;  // (scratch: tried for every line vertex, pass after pass)
   live_faces(x, fx);
@@ -1076,7 +1101,7 @@ bool Collapser::try_slide_on_line(int x) {
   return false;
 }
 
-bool Collapser::try_relocate(int x) {
+bool Collapser::attempt_relocation(int x) {
   if (line_degree_[x] > 0) return false;
   std::vector<int>& fx = scratch_fx_;
   live_faces(x, fx);
@@ -1183,7 +1208,12 @@ int Collapser::run(double threshold) {
   const double rounding = std::min(budget, 1e-12 * budget_scale_);
   changed_at_.assign(r_.vertices.size(), 0);
   keep_cut_surface();
+  flip_refused_now_.assign(3 * r_.faces.size(), -1);
+  removal_refused_now_.assign(r_.vertices.size(), -1);
+  slide_refused_now_.assign(r_.vertices.size(), -1);
+  relocation_refused_now_.assign(r_.vertices.size(), -1);
   for (int round = 0; round < 2; ++round) {
+    ++clock_;
     removal_refused_at_.assign(r_.vertices.size(), -1);
     slide_refused_at_.assign(r_.vertices.size(), -1);
     collapse_refused_at_.clear();
