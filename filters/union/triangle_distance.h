@@ -23,6 +23,10 @@ public:
 
   double squared_distance(const V3& p) const {
     const V3 ap = sub3(p, a_);
+    // No interior (corners in a line or at one point): the regions' divisions would be
+    // 0 / 0; the triangle is then the segment between its farthest corners.
+    if (degenerate_)
+      return std::min({on_segment(ap, {0, 0, 0}, ab_), on_segment(ap, {0, 0, 0}, ac_), on_segment(ap, ab_, ac_)});
     const double d1 = dot(ab_, ap), d2 = dot(ac_, ap);
     if (d1 <= 0 && d2 <= 0) return dot(ap, ap);  // corner a
     const double d3 = d1 - d00_, d4 = d2 - d01_;  // ab.(p-b), ac.(p-b)
@@ -38,13 +42,19 @@ public:
       const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
       return along(ap, ab_, 1 - w, ac_, w);
     }
-    if (degenerate_)  // no interior: the nearest corner
-      return std::min({dot(ap, ap), along(ap, ab_, 1, ac_, 0), along(ap, ab_, 0, ac_, 1)});
     const double h = dot(unit_normal_, ap);  // inside: the distance from the plane
     return h * h;
   }
 
 private:
+  // From p (ap = p - a) to the segment from a + u to a + v.
+  static double on_segment(const V3& ap, const V3& u, const V3& v) {
+    const V3 d = sub3(v, u), up = sub3(ap, u);
+    const double dd = dot(d, d);
+    const double t = dd > 0 ? std::clamp(dot(up, d) / dd, 0.0, 1.0) : 0.0;
+    const V3 e{up[0] - t * d[0], up[1] - t * d[1], up[2] - t * d[2]};
+    return dot(e, e);
+  }
   // |ap - u s - v t|^2: from p to the point a + u s + v t.
   static double along(const V3& ap, const V3& u, double s, const V3& v, double t) {
     const V3 d{ap[0] - u[0] * s - v[0] * t, ap[1] - u[1] * s - v[1] * t, ap[2] - u[2] * s - v[2] * t};

@@ -1,5 +1,6 @@
 // PreparedTriangle: squared distances from points, against Ericson's closest point
-// (common/closest_point), on random triangles, needles and points in every Voronoi region.
+// (common/closest_point), on random triangles, needles and points in every Voronoi region;
+// degenerate triangles against their longest side.
 #include "union/triangle_distance.h"
 
 #include "common/closest_point.h"
@@ -50,8 +51,17 @@ TEST(UnionPreparedTriangle, EachRegionOfARightTriangle) {
   EXPECT_DOUBLE_EQ(t.squared_distance({1, 0, 0}), 0);        // on a side
 }
 
-TEST(UnionPreparedTriangle, DegenerateTriangleGivesTheNearestCorner) {
-  const PreparedTriangle t({0, 0, 0}, {1, 0, 0}, {2, 0, 0});  // corners in a line
-  EXPECT_DOUBLE_EQ(t.squared_distance({2, 1, 0}), 1);
-  EXPECT_DOUBLE_EQ(t.squared_distance({-1, 0, 0}), 1);
+TEST(UnionPreparedTriangle, DegenerateTrianglesAreTheirLongestSide) {
+  // Corners in a line: the distance is to the segment between the outer two, also beside
+  // its middle corner, where the nearest corner is farther.
+  const PreparedTriangle line({0, 0, 0}, {1, 0, 0}, {4, 0, 0});
+  EXPECT_DOUBLE_EQ(line.squared_distance({2.5, 1, 0}), 1);
+  EXPECT_DOUBLE_EQ(line.squared_distance({-1, 0, 0}), 1);
+  EXPECT_DOUBLE_EQ(line.squared_distance({5, 0, 2}), 5);
+  // Two corners at one point (Ericson's regions divide 0 by 0 there).
+  const PreparedTriangle doubled({0, 0, 0}, {0, 0, 0}, {1, 0, 0});
+  EXPECT_DOUBLE_EQ(doubled.squared_distance({0.5, 1, 0}), 1);
+  // All three at one point.
+  const PreparedTriangle point({1, 1, 1}, {1, 1, 1}, {1, 1, 1});
+  EXPECT_DOUBLE_EQ(point.squared_distance({1, 1, 3}), 4);
 }
