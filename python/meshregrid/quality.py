@@ -15,6 +15,18 @@ def face_angles(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return out
 
 
+def one_way_hausdorff(ms: pymeshlab.MeshSet, sampled_id: int, target_id: int, samples: int,
+                      maxdist: float = None) -> float:
+    """Largest distance from points sampled on layer ``sampled_id`` (vertices, edges and
+    faces: PyMeshLab's default samples 8 vertices) to layer ``target_id``. Distances beyond
+    ``maxdist`` (default: PyMeshLab's 5% of the diagonal) are not measured."""
+    kw = dict(sampledmesh=sampled_id, targetmesh=target_id, samplenum=samples, samplevert=True,
+              sampleedge=True, sampleface=True)
+    if maxdist is not None:
+        kw["maxdist"] = pymeshlab.PureValue(maxdist)
+    return ms.get_hausdorff_distance(**kw)["max"]
+
+
 def mesh_quality(ms: pymeshlab.MeshSet, mesh_id: int, reference_id: int = None) -> dict:
     """Angles of layer ``mesh_id`` and, with a reference layer, the symmetric Hausdorff
     distance to it (sampled on faces, as a fraction of the reference's diagonal)."""
@@ -31,11 +43,10 @@ def mesh_quality(ms: pymeshlab.MeshSet, mesh_id: int, reference_id: int = None) 
     }
     if reference_id is not None:
         diag = ms.mesh(reference_id).bounding_box().diagonal()
-        kw = dict(samplenum=max(10000, 10 * m.face_number()), sampleface=True, sampleedge=True,
-                  samplevert=True, maxdist=pymeshlab.PureValue(diag))
+        samples = max(10000, 10 * m.face_number())
         current = ms.current_mesh_id()
-        d = max(ms.get_hausdorff_distance(sampledmesh=mesh_id, targetmesh=reference_id, **kw)["max"],
-                ms.get_hausdorff_distance(sampledmesh=reference_id, targetmesh=mesh_id, **kw)["max"])
+        d = max(one_way_hausdorff(ms, mesh_id, reference_id, samples, diag),
+                one_way_hausdorff(ms, reference_id, mesh_id, samples, diag))
         ms.set_current_mesh(current)
         out["hausdorff_pct_diag"] = float(100 * d / diag)
     return out

@@ -6,6 +6,7 @@ import pytest
 
 from conftest import assert_unchanged, load, raises_on, snapshot
 import patch_gap_cases as cases
+from meshregrid.quality import one_way_hausdorff
 
 Pct = pymeshlab.PercentageValue
 Abs = pymeshlab.PureValue
@@ -31,9 +32,7 @@ def mesh_set(V, F, P=None):
 
 def hausdorff_to(ms, sampled, target, diag):
     """Largest distance from points sampled on `sampled` (vertices, edges, faces) to `target`."""
-    return ms.get_hausdorff_distance(sampledmesh=sampled, targetmesh=target, samplenum=20000,
-                                     sampleface=True, sampleedge=True, samplevert=True,
-                                     maxdist=Abs(diag))["max"]
+    return one_way_hausdorff(ms, sampled, target, 20000, maxdist=diag)
 
 
 def assert_sound(V, F):

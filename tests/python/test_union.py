@@ -14,6 +14,7 @@ import pymeshlab
 import pytest
 
 from conftest import assert_unchanged, load, raises_on, shared_mesh, snapshot
+from meshregrid.quality import one_way_hausdorff
 
 manifold3d = pytest.importorskip("manifold3d")
 
@@ -690,11 +691,6 @@ def test_sliver_step_on_box_stl_bends_lines_onto_plate_edges():
     assert (out < 5).sum() <= 810
 
 
-def _hausdorff(ms, sampled, target):
-    return ms.get_hausdorff_distance(sampledmesh=sampled, targetmesh=target, samplevert=True, sampleedge=True,
-                                     sampleface=True, samplenum=200000)["max"]
-
-
 @pytest.mark.parametrize("name,bound", [
     # Measured (fraction of the diagonal; from the union, then to it): the bound is 2e-3,
     # checked at samples of every face a move makes (corners, points at a quarter, half and
@@ -727,6 +723,6 @@ def test_sliver_step_keeps_the_surface_near_the_exact_union(name, bound):
     improved = ms.current_mesh_id()
     assert r["slivers_collapsed"] > 0
     diag = ms.mesh(exact).bounding_box().diagonal()
-    assert _hausdorff(ms, improved, exact) <= bound * diag
-    assert _hausdorff(ms, exact, improved) <= bound * diag
+    assert one_way_hausdorff(ms, improved, exact, 200000) <= bound * diag
+    assert one_way_hausdorff(ms, exact, improved, 200000) <= bound * diag
 
