@@ -33,11 +33,15 @@ public:
     if (thread_.joinable()) thread_.join();
   }
 
-  /// Runs `task` on another thread, or here when one thread is all there is. Call once.
-  void run(std::function<void()> task) {
+  /// Runs `task` on another thread, or here when one thread is all there is; on that
+  /// thread `then` follows (lending it, see SideWorker). Call once.
+  void run(std::function<void()> task, std::function<void()> then = {}) {
     if (worker_count() > 1) {
       try {
-        thread_ = std::thread(std::move(task));
+        thread_ = std::thread([task = std::move(task), then = std::move(then)] {
+          task();
+          if (then) then();
+        });
         return;
       } catch (const std::system_error&) {
         // no thread to be had: run here after all

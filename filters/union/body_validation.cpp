@@ -125,12 +125,13 @@ SelfIntersectionCheck::~SelfIntersectionCheck() {
   if (thread_.joinable()) thread_.join();
 }
 
-void SelfIntersectionCheck::start(std::function<void()> first) {
+void SelfIntersectionCheck::start(std::function<void()> first, std::function<void()> then) {
   if (worker_count() > 1 && !thread_.joinable()) {
     try {
-      thread_ = std::thread([this, first = std::move(first)] {
+      thread_ = std::thread([this, first = std::move(first), then = std::move(then)] {
         first();
         work();
+        if (then) then();
       });
       return;
     } catch (const std::system_error&) {

@@ -35,8 +35,9 @@ public:
   ~SelfIntersectionCheck();  // waits for the thread
   /// Starts checking on another thread, which first runs `first` (the union's
   /// temporaries freed there: a third thread beside the sliver step cost the 2000-sphere
-  /// cluster more than the check). Without a thread, `first` runs here. Call once.
-  void start(std::function<void()> first);
+  /// cluster more than the check) and after the check `then` (lending the thread to the
+  /// sliver step). Without a thread, `first` runs here and `then` not. Call once.
+  void start(std::function<void()> first, std::function<void()> then = {});
   /// Checks what is left on this thread too, and waits.
   /// \throw TopologyError naming the first body that crosses itself.
   void finish();

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -50,8 +51,8 @@ inline bool has_corner(const std::array<int, 3>& t, int x) { return t[0] == x ||
 
 class Collapser {
 public:
-  Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change)
-      : r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()), grid_(r.vertices, r.faces),
+  Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change, SideWorker* helper)
+      : helper_(helper), r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()), grid_(r.vertices, r.faces),
         new_mark_(r.faces.size(), 0), angle_(r.faces.size(), -1) {
     double volume = 0;
     for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
@@ -79,6 +80,8 @@ public:
     for (const auto& e : line_) { ++line_degree_[e.first]; ++line_degree_[e.second]; }
   }
 
+  /// The tree over the cut's surface (faces_near_cut), built beside the constructor.
+  void take_cut_surface(FaceTree tree) { cut_surface_ = std::move(tree); }
   int run(double threshold_rad);
   void run_passes(double threshold_rad);
   void compact();
@@ -277,6 +280,19 @@ private:
     new_pos_.push_back(q);
   }
   bool stays_clear();
+  /// The move's checks but the touching one: near_cut_surface(cut_pointwise), after
+  /// stays_near(near_pointwise) when `compare_patches`, and stays_clear() beside them on
+  /// the helper (they read the same state and write their own scratch).
+  bool near_and_clear(double cut_pointwise, bool compare_patches = false, double near_pointwise = 1e300) {
+    bool near = false, clear = false;
+    auto here = [&] {
+      near = (!compare_patches || stays_near(near_pointwise)) && near_cut_surface(cut_pointwise);
+      return near;
+    };
+    if (!helper_) return here() && stays_clear();
+    helper_->run([&] { clear = stays_clear(); }, here);
+    return near && clear;
+  }
   /// The proposed faces and the faces they replace are within the deviation bound of
   /// each other: `pointwise`, the farthest any point of the faces moves, when it is known
   /// and within the bound; else the two patches are compared (patch_distance.h).
@@ -338,6 +354,7 @@ private:
   std::vector<int> ring_mark_;  // per vertex: the stamp of the last ring it was put in
   int ring_stamp_ = 0;
 
+  SideWorker* helper_;  // or null
   Result& r_;
   std::vector<char> alive_;
   std::vector<char> changed_;  // vertices whose neighbourhood changed in this pass
@@ -348,8 +365,8 @@ private:
   // further from it than the deviation bound (each alone is within it). Over the faces
   // within two rings of a cut face, the only ones moves come near.
   FaceTree cut_surface_;
-  /// At the step's start: the tree over the cut's surface, the faces' distances (0) and
-  /// the touching vertices.
+  /// At the step's start: the faces' distances from the cut's surface (0) and the
+  /// touching vertices.
   void keep_cut_surface();
   std::vector<char> touching_;  // per vertex: another vertex sits at its place as the step begins
   /// Where two sheets touch (vertices of both at one point), their faces keep their shape
@@ -418,23 +435,27 @@ void Collapser::keep_cut_surface() {
   cut_distance_.assign(r_.faces.size(), 0);
   touching_.assign(r_.vertices.size(), 0);
   for (int x = 0; x < int(r_.vertices.size()); ++x) touching_[x] = vertices_at(P(x)) > 1;
-  std::vector<char> in_ring(r_.vertices.size(), 0);
-  for (int f = 0; f < int(r_.faces.size()); ++f)
-    if (cut_[f])
-      for (int x : r_.faces[f]) in_ring[x] = 1;
+}
+
+/// The faces within two rings of a face the cut made: the only ones moves come near.
+std::vector<int> faces_near_cut(const Result& r, const std::vector<char>& cut) {
+  std::vector<char> in_ring(r.vertices.size(), 0);
+  for (int f = 0; f < int(r.faces.size()); ++f)
+    if (cut[f])
+      for (int x : r.faces[f]) in_ring[x] = 1;
   for (int ring = 0; ring < 2; ++ring) {
     std::vector<char> next = in_ring;
-    for (const auto& t : r_.faces)
+    for (const auto& t : r.faces)
       if (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]])
         for (int x : t) next[x] = 1;
     in_ring.swap(next);
   }
   std::vector<int> near_cut;
-  for (int f = 0; f < int(r_.faces.size()); ++f) {
-    const auto& t = r_.faces[f];
+  for (int f = 0; f < int(r.faces.size()); ++f) {
+    const auto& t = r.faces[f];
     if (in_ring[t[0]] || in_ring[t[1]] || in_ring[t[2]]) near_cut.push_back(f);
   }
-  cut_surface_ = FaceTree(r_.vertices, r_.faces, near_cut);
+  return near_cut;
 }
 
 bool Collapser::near_cut_surface(double pointwise) {
@@ -732,8 +753,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
     for (int f : fw)
       if (!has_corner(r_.faces[f], v)) propose(f, w, w, target);
   if (!cover_unchanged(v, moved ? w : -1)) {
-    if (replaces_touching_face() || !near_cut_surface(std::max(norm(sub3(target, P(v))), norm(p))) || !stays_clear())
-      return false;
+    if (replaces_touching_face() || !near_and_clear(std::max(norm(sub3(target, P(v))), norm(p)))) return false;
     keep_cut_distance();
   }
   const double budget_before = volume_budget_;
@@ -840,7 +860,7 @@ bool Collapser::attempt_flip(int f, int z) {
   new_pos_ = {{P(u), P(d), P(c)}, {P(d), P(v), P(c)}};
   // A flat convex quad (CAD plates) covers the same place after the flip: nothing to check.
   if (!flat_convex_quad(P(u), P(v), P(c), P(d))) {
-    if (replaces_touching_face() || !stays_near() || !near_cut_surface() || !stays_clear()) return false;
+    if (replaces_touching_face() || !near_and_clear(1e300, true)) return false;
     keep_cut_distance();
   }
   const FlipUndo undo = flip(f, g, u, v, c, d);
@@ -970,7 +990,7 @@ bool Collapser::attempt_removal(int v) {
   }
   if (!cover_unchanged(v)) {
     if (replaces_touching_face() || !stays_near()) return refuse();
-    if (!near_cut_surface() || !stays_clear()) return false;
+    if (!near_and_clear(1e300)) return false;
     keep_cut_distance();
   }
   // The first k - 2 faces of the star take the new triangles; the last two go.
@@ -1156,7 +1176,7 @@ bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
   // further than the bound: then the patches are compared, unless they cover the same).
   if (!cover_unchanged(x)) {
     const double moved = norm(sub3(at, P(x)));
-    if (replaces_touching_face() || !stays_near(moved) || !near_cut_surface(moved) || !stays_clear()) return false;
+    if (replaces_touching_face() || !near_and_clear(moved, true, moved)) return false;
     keep_cut_distance();
   }
   place(x, at);
@@ -1320,10 +1340,24 @@ double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vec
 }
 
 int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
-                     double max_volume_change) {
-  Collapser c(r, cut, max_deviation, max_volume_change);
-  const int n = c.run(sliver_angle_deg * kPi / 180);
-  c.compact();
+                     double max_volume_change, SideWorker* helper) {
+  // The tree and the collapser's own tables both only read r.
+  FaceTree cut_surface;
+  std::optional<Collapser> c;
+  auto build_tree = [&] { cut_surface = FaceTree(r.vertices, r.faces, faces_near_cut(r, cut)); };
+  auto set_up = [&] {
+    c.emplace(r, cut, max_deviation, max_volume_change, helper);
+    return true;
+  };
+  if (helper) {
+    helper->run(build_tree, set_up);
+  } else {
+    build_tree();
+    set_up();
+  }
+  c->take_cut_surface(std::move(cut_surface));
+  const int n = c->run(sliver_angle_deg * kPi / 180);
+  c->compact();
   return n;
 }
 

@@ -5,6 +5,7 @@
 // for every move before it is applied).
 #pragma once
 
+#include "common/side_worker.h"
 #include "union/surface_union.h"
 
 namespace mr::surface_union {
@@ -15,8 +16,10 @@ namespace mr::surface_union {
 /// bent onto a crease vertex reshapes (they are then treated too).
 /// `max_deviation` bounds each move (fraction of the bbox diagonal); `max_volume_change`
 /// bounds the total volume change of all moves (fraction of the volume).
+/// `helper` (may be null) takes each move's crossing check beside its other checks, and
+/// the tree of the cut's surface beside the setup; the result is the same without it.
 int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
-                     double max_volume_change);
+                     double max_volume_change, SideWorker* helper = nullptr);
 
 /// Smallest face angle of a mesh, degrees.
 double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vector<std::array<int, 3>>& f);

@@ -3,6 +3,7 @@
 #include "common/background_release.h"
 #include "common/errors.h"
 #include "common/parallel_for.h"
+#include "common/side_worker.h"
 #include "common/union_find.h"
 #include "union/body_validation.h"
 #include "union/candidate_pairs.h"
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 
@@ -100,6 +102,12 @@ void chain_lines(Result& r) {
         if (!used[size_t(at_vertex[size_t(k)])]) walk(x, at_vertex[size_t(k)]);
     }
 }
+
+/// Ends a SideWorker's serving when the step that uses it is over (or failed).
+struct StopWhenDone {
+  std::shared_ptr<SideWorker> worker;
+  ~StopWhenDone() { worker->stop(); }
+};
 
 /// Steps 1-8 on bodies that passed the validation (but for self-intersections, which
 /// are being checked beside it).
@@ -284,13 +292,19 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
   auto free_temporaries = destroyer(soup, pts, vertex_point, pairs, cf, intersector, may_meet, sub, sub_body, sub_face,
                                     sub_cut, dropped, kept_copy_body, cut_list, cut_triangles, cl, uf, vertex_of,
                                     face_of_sub);
+  // That thread then serves the sliver step's checks (shared: it may still be checking
+  // when this function returns, and reach serve() only after that).
   BackgroundRelease release;
-  if (check) check->start(std::move(free_temporaries));
-  else release.run(std::move(free_temporaries));
+  const auto helper = std::make_shared<SideWorker>();
+  const StopWhenDone stop_helper{helper};  // (before `release` joins, and before the check is finished)
+  auto serve = [helper] { helper->serve(); };
+  if (check) check->start(std::move(free_temporaries), serve);
+  else release.run(std::move(free_temporaries), serve);
   // 5. Slivers.
   t = Clock::now();
-  if (params.sliver_angle_deg > 0) r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,
-                                          params.sliver_max_volume_change);
+  if (params.sliver_angle_deg > 0)
+    r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,
+                                           params.sliver_max_volume_change, helper.get());
   r.time_slivers_ms = ms_since(t);
   for (const auto& l : r.line_edge) r.intersection_edges += int(l[0]) + int(l[1]) + int(l[2]);
   r.intersection_edges /= 2;

@@ -1,0 +1,63 @@
+#include "common/side_worker.h"
+
+#include <chrono>
+#include <thread>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define MR_SPIN_PAUSE() _mm_pause()
+#else
+#define MR_SPIN_PAUSE() std::this_thread::yield()
+#endif
+
+namespace mr {
+
+namespace {
+// How long a server spins for the next offer before it yields its core between polls
+// (it never sleeps: waking it took the caller a system call per offer, more than the
+// checks it takes over). Offers come every few to a few hundred microseconds.
+constexpr auto kSpinFor = std::chrono::microseconds(200);
+}  // namespace
+
+void SideWorker::serve() {
+  auto idle_since = std::chrono::steady_clock::now();
+  int polls = 0;
+  bool yielding = false;
+  while (!stop_.load(std::memory_order_acquire)) {
+    int offered = kOffered;
+    if (state_.load(std::memory_order_relaxed) == kOffered &&
+        state_.compare_exchange_strong(offered, kTaken, std::memory_order_acq_rel)) {
+      fn_(arg_);
+      state_.store(kDone, std::memory_order_release);
+      yielding = false;
+      idle_since = std::chrono::steady_clock::now();
+      continue;
+    }
+    if (yielding) {
+      std::this_thread::yield();
+      continue;
+    }
+    MR_SPIN_PAUSE();
+    if (++polls % 64 == 0 && std::chrono::steady_clock::now() - idle_since > kSpinFor) yielding = true;
+  }
+}
+
+void SideWorker::stop() { stop_.store(true, std::memory_order_release); }
+
+void SideWorker::offer(void (*fn)(void*), void* arg) {
+  fn_ = fn;
+  arg_ = arg;
+  state_.store(kOffered, std::memory_order_release);
+}
+
+void SideWorker::finish(bool needed) {
+  int offered = kOffered;
+  if (state_.compare_exchange_strong(offered, kIdle, std::memory_order_acq_rel)) {
+    if (needed) fn_(arg_);  // nobody took it
+    return;
+  }
+  while (state_.load(std::memory_order_acquire) != kDone) MR_SPIN_PAUSE();
+  state_.store(kIdle, std::memory_order_relaxed);
+}
+
+}  // namespace mr
