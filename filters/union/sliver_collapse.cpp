@@ -4,6 +4,7 @@
 #include "union/triangle_angles.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 #include <unordered_map>
@@ -281,18 +282,20 @@ private:
   }
   bool stays_clear();
   /// The move's checks but the touching one: near_cut_surface(cut_pointwise), after
-  /// stays_near(near_pointwise) when `compare_patches`, and stays_clear() beside them on
-  /// the helper (they read the same state and write their own scratch).
-  bool near_and_clear(double cut_pointwise, bool compare_patches = false, double near_pointwise = 1e300) {
-    bool near = false, clear = false;
-    auto here = [&] {
-      near = (!compare_patches || stays_near(near_pointwise)) && near_cut_surface(cut_pointwise);
-      return near;
-    };
-    if (!helper_) return here() && stays_clear();
-    helper_->run([&] { clear = stays_clear(); }, here);
-    return near && clear;
-  }
+  /// stays_near(near_pointwise) when `compare_patches`, and stays_clear(), whose face
+  /// pairs the helper starts on meanwhile (the pair tests and the deviation checks read
+  /// the same state and write their own scratch).
+  bool near_and_clear(double cut_pointwise, bool compare_patches = false, double near_pointwise = 1e300);
+  // stays_clear() in parts: the faces near the move (near_), their tests against the
+  // new faces (shared out in chunks through share_), the new faces among themselves.
+  void gather_near_faces();
+  bool meets_new_face(int g) const;
+  void test_near_faces();
+  bool new_faces_clear() const;
+  struct PairShare {
+    std::atomic<size_t> next{0};
+    std::atomic<bool> met{false}, cancel{false};
+  } share_;
   /// The proposed faces and the faces they replace are within the deviation bound of
   /// each other: `pointwise`, the farthest any point of the faces moves, when it is known
   /// and within the bound; else the two patches are compared (patch_distance.h).
@@ -497,7 +500,7 @@ bool Collapser::near_cut_surface(double pointwise) {
   return true;
 }
 
-bool Collapser::stays_clear() {
+void Collapser::gather_near_faces() {
   ++new_stamp_;
   for (int f : replaced_) new_mark_[f] = new_stamp_;
   // One lookup for the whole move: the box around all new faces.
@@ -513,30 +516,74 @@ bool Collapser::stays_clear() {
     for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], flo[k]); hi[k] = std::max(hi[k], fhi[k]); }
   }
   grid_.near(lo, hi, near_);
-  for (int g : near_) {
-    if (!alive_[g] || new_mark_[g] == new_stamp_) continue;
-    // Every pair, also with the star's own ring: a fold at a crease crosses faces
-    // that share a corner with the move.
-    const auto& t = r_.faces[g];
-    const auto& [glo, ghi] = grid_.filed_box(g);  // faces are refiled after every change
-    V3 gq[3];
-    int kg = -2;  // axis_plane(gq), once a new face is near (gq filled then)
-    for (size_t i = 0; i < new_ids_.size(); ++i) {
-      if (boxes_apart(glo, ghi, boxes[i][0], boxes[i][1])) continue;
-      if (kg == -2) {
-        for (int z = 0; z < 3; ++z) gq[z] = P(t[z]);
-        kg = axis_plane(gq);  // CAD plates: most faces nearby lie in such planes
-      }
-      if (kg >= 0 && meets_axis_plane_only_where_it_was(i, kg, gq[0][kg])) continue;
-      if (triangles_meet(new_ids_[i], new_pos_[i].data(), t, gq)) return false;
+  share_.next.store(0, std::memory_order_relaxed);
+  share_.met.store(false, std::memory_order_relaxed);
+  share_.cancel.store(false, std::memory_order_relaxed);
+}
+
+bool Collapser::meets_new_face(int g) const {
+  if (!alive_[g] || new_mark_[g] == new_stamp_) return false;
+  // Every pair, also with the star's own ring: a fold at a crease crosses faces
+  // that share a corner with the move.
+  const auto& t = r_.faces[g];
+  const auto& [glo, ghi] = grid_.filed_box(g);  // faces are refiled after every change
+  V3 gq[3];
+  int kg = -2;  // axis_plane(gq), once a new face is near (gq filled then)
+  for (size_t i = 0; i < new_ids_.size(); ++i) {
+    if (boxes_apart(glo, ghi, scratch_boxes_[i][0], scratch_boxes_[i][1])) continue;
+    if (kg == -2) {
+      for (int z = 0; z < 3; ++z) gq[z] = P(t[z]);
+      kg = axis_plane(gq);  // CAD plates: most faces nearby lie in such planes
     }
+    if (kg >= 0 && meets_axis_plane_only_where_it_was(i, kg, gq[0][kg])) continue;
+    if (triangles_meet(new_ids_[i], new_pos_[i].data(), t, gq)) return true;
   }
+  return false;
+}
+
+void Collapser::test_near_faces() {
+  constexpr size_t kChunk = 8;
+  const size_t n = near_.size();
+  for (size_t c; !share_.met.load(std::memory_order_relaxed) && !share_.cancel.load(std::memory_order_relaxed) &&
+                 (c = share_.next.fetch_add(kChunk, std::memory_order_relaxed)) < n;)
+    for (size_t k = c; k < std::min(n, c + kChunk); ++k)
+      if (meets_new_face(near_[k])) {
+        share_.met.store(true, std::memory_order_relaxed);
+        return;
+      }
+}
+
+bool Collapser::new_faces_clear() const {
+  const auto& boxes = scratch_boxes_;
   for (size_t i = 0; i < new_ids_.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       if (!boxes_apart(boxes[i][0], boxes[i][1], boxes[j][0], boxes[j][1]) &&
           triangles_meet(new_ids_[i], new_pos_[i].data(), new_ids_[j], new_pos_[j].data()))
         return false;
   return true;
+}
+
+bool Collapser::stays_clear() {
+  gather_near_faces();
+  test_near_faces();
+  return !share_.met.load(std::memory_order_relaxed) && new_faces_clear();
+}
+
+bool Collapser::near_and_clear(double cut_pointwise, bool compare_patches, double near_pointwise) {
+  auto near = [&] { return (!compare_patches || stays_near(near_pointwise)) && near_cut_surface(cut_pointwise); };
+  if (!helper_) return near() && stays_clear();
+  // The near faces are gathered here; their tests are shared out in chunks, the helper
+  // starting on them while this thread takes the deviation checks, then joins it.
+  gather_near_faces();
+  bool is_near = false;
+  helper_->run([&] { test_near_faces(); },
+               [&] {
+                 is_near = near();
+                 if (is_near) test_near_faces();
+                 else share_.cancel.store(true, std::memory_order_relaxed);
+                 return is_near;
+               });
+  return is_near && !share_.met.load(std::memory_order_relaxed) && new_faces_clear();
 }
 
 bool Collapser::meets_axis_plane_only_where_it_was(size_t i, int k, double c) const {
