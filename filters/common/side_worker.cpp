@@ -19,10 +19,10 @@ namespace {
 constexpr auto kSpinFor = std::chrono::microseconds(200);
 }  // namespace
 
-void SideWorker::serve() {
+void SideWorker::serve(const std::function<bool()>& idle) {
   auto idle_since = std::chrono::steady_clock::now();
   int polls = 0;
-  bool yielding = false;
+  bool yielding = false, idle_left = bool(idle);
   while (!stop_.load(std::memory_order_acquire)) {
     int offered = kOffered;
     if (state_.load(std::memory_order_relaxed) == kOffered &&
@@ -30,6 +30,11 @@ void SideWorker::serve() {
       fn_(arg_);
       state_.store(kDone, std::memory_order_release);
       yielding = false;
+      idle_since = std::chrono::steady_clock::now();
+      continue;
+    }
+    if (idle_left) {
+      idle_left = idle();
       idle_since = std::chrono::steady_clock::now();
       continue;
     }

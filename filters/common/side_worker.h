@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <type_traits>
 
 namespace mr {
@@ -19,9 +20,10 @@ public:
   SideWorker& operator=(const SideWorker&) = delete;
 
   /// Runs offered tasks on the calling thread until stop() (returns at once after it).
-  /// Spins a while after each task (offers come in quick succession), then yields its
-  /// core between polls.
-  void serve();
+  /// Between offers it runs `idle` (a piece of background work; false once there is
+  /// none left), then spins a while (offers come in quick succession) and then yields
+  /// its core between polls.
+  void serve(const std::function<bool()>& idle = {});
   /// serve() returns, now or whenever it is called. No task may be pending.
   void stop();
 

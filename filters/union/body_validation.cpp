@@ -130,8 +130,8 @@ void SelfIntersectionCheck::start(std::function<void()> first, std::function<voi
     try {
       thread_ = std::thread([this, first = std::move(first), then = std::move(then)] {
         first();
-        work();
         if (then) then();
+        work();
       });
       return;
     } catch (const std::system_error&) {
@@ -141,14 +141,20 @@ void SelfIntersectionCheck::start(std::function<void()> first, std::function<voi
   first();
 }
 
-void SelfIntersectionCheck::work() {
+bool SelfIntersectionCheck::check_next() {
   // (The bodies face outward now: validate_bodies turned the others.)
-  for (size_t i; (i = next_.fetch_add(1)) < bodies_.size();) {
-    try {
-      crossing_[i] = self_intersection(bodies_[i]);
-    } catch (...) {
-      error_[i] = std::current_exception();
-    }
+  const size_t i = next_.fetch_add(1);
+  if (i >= bodies_.size()) return false;
+  try {
+    crossing_[i] = self_intersection(bodies_[i]);
+  } catch (...) {
+    error_[i] = std::current_exception();
+  }
+  return true;
+}
+
+void SelfIntersectionCheck::work() {
+  while (check_next()) {
   }
 }
 

@@ -35,9 +35,12 @@ public:
   ~SelfIntersectionCheck();  // waits for the thread
   /// Starts checking on another thread, which first runs `first` (the union's
   /// temporaries freed there: a third thread beside the sliver step cost the 2000-sphere
-  /// cluster more than the check) and after the check `then` (lending the thread to the
-  /// sliver step). Without a thread, `first` runs here and `then` not. Call once.
+  /// cluster more than the check), then `then` (which may check bodies with check_next,
+  /// between tasks of its own: it serves the sliver step), and then checks whatever is
+  /// left. Without a thread, `first` runs here and `then` not. Call once.
   void start(std::function<void()> first, std::function<void()> then = {});
+  /// Checks the next body not taken yet; false when none was left.
+  bool check_next();
   /// Checks what is left on this thread too, and waits.
   /// \throw TopologyError naming the first body that crosses itself.
   void finish();

@@ -292,14 +292,15 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
   auto free_temporaries = destroyer(soup, pts, vertex_point, pairs, cf, intersector, may_meet, sub, sub_body, sub_face,
                                     sub_cut, dropped, kept_copy_body, cut_list, cut_triangles, cl, uf, vertex_of,
                                     face_of_sub);
-  // That thread then serves the sliver step's checks (shared: it may still be checking
-  // when this function returns, and reach serve() only after that).
+  // That thread then serves the sliver step, checking bodies between its tasks (the
+  // helper is shared: the thread may reach serve() only after this function returns).
   BackgroundRelease release;
   const auto helper = std::make_shared<SideWorker>();
   const StopWhenDone stop_helper{helper};  // (before `release` joins, and before the check is finished)
-  auto serve = [helper] { helper->serve(); };
-  if (check) check->start(std::move(free_temporaries), serve);
-  else release.run(std::move(free_temporaries), serve);
+  if (check)
+    check->start(std::move(free_temporaries), [helper, check] { helper->serve([check] { return check->check_next(); }); });
+  else
+    release.run(std::move(free_temporaries), [helper] { helper->serve(); });
   // 5. Slivers.
   t = Clock::now();
   if (params.sliver_angle_deg > 0)

@@ -1,6 +1,6 @@
 // SideWorker: every offered task runs exactly once, on the server or on the caller; a
-// task the caller's part makes unnecessary may be dropped; stop() ends serving, also
-// before it began.
+// task the caller's part makes unnecessary may be dropped; background work runs between
+// tasks until it says none is left; stop() ends serving, also before it began.
 #include "common/side_worker.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +17,12 @@ namespace {
 void wait_for(const std::atomic<bool>& flag) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
   while (!flag.load() && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+}
+
+// Waits up to ten seconds for `count` to reach `n`.
+void wait_for_count(const std::atomic<int>& count, int n) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (count.load() < n && std::chrono::steady_clock::now() < until) std::this_thread::yield();
 }
 
 }  // namespace
@@ -88,4 +94,22 @@ TEST(SideWorker, StopBeforeServingEndsServingAtOnce) {
   int ran = 0;
   worker.run([&] { ++ran; }, [] { return true; });
   EXPECT_EQ(ran, 1);
+}
+
+TEST(SideWorker, BackgroundWorkRunsBetweenTasksUntilNoneIsLeft) {
+  mr::SideWorker worker;
+  std::atomic<int> pieces{0};
+  std::atomic<bool> served{false};
+  std::thread server([&] {
+    worker.serve([&] { return ++pieces < 50; });
+    served = true;
+  });
+  int ran = 0;
+  for (int i = 0; i < 200; ++i) worker.run([&] { ++ran; }, [] { return true; });
+  wait_for_count(pieces, 50);
+  EXPECT_EQ(ran, 200);
+  EXPECT_EQ(pieces.load(), 50);  // not called again after it said none is left
+  worker.stop();
+  server.join();
+  EXPECT_TRUE(served.load());
 }
