@@ -556,7 +556,7 @@ bool Collapser::meets_new_face(int g) const {
 }
 
 void Collapser::test_near_faces() {
-  constexpr size_t kChunk = 8;
+  constexpr size_t kChunk = 2;
   const size_t n = near_.size();
   for (size_t c; !share_.met.load(std::memory_order_relaxed) && !share_.cancel.load(std::memory_order_relaxed) &&
                  (c = share_.next.fetch_add(kChunk, std::memory_order_relaxed)) < n;)
