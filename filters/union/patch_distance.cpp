@@ -18,7 +18,7 @@ bool near_some_face(const V3& p, const std::vector<PreparedTriangle>& faces, dou
   return false;
 }
 
-bool samples_within_squared(const std::vector<Triangle>& from, const std::vector<Triangle>& to_faces, double limit2) {
+bool samples_within(const std::vector<Triangle>& from, const std::vector<Triangle>& to_faces, double limit2) {
   std::vector<PreparedTriangle> to;
   to.reserve(to_faces.size());
   for (const Triangle& t : to_faces) to.emplace_back(t[0], t[1], t[2]);
@@ -36,8 +36,6 @@ bool samples_within_squared(const std::vector<Triangle>& from, const std::vector
   return true;
 }
 
-}  // namespace
-
 // All corners of both patches have the same coordinate along one axis (CAD plates).
 bool in_one_axis_plane(const std::vector<Triangle>& a, const std::vector<Triangle>& b) {
   if (a.empty()) return false;
@@ -52,16 +50,14 @@ bool in_one_axis_plane(const std::vector<Triangle>& a, const std::vector<Triangl
   return false;
 }
 
-bool samples_within(const std::vector<Triangle>& from, const std::vector<Triangle>& to, double limit) {
-  return samples_within_squared(from, to, limit * limit);
-}
+}  // namespace
 
 bool patches_within(const std::vector<Triangle>& a, const std::vector<Triangle>& b, double limit) {
   // Unfolded patches with one boundary in one plane cover the same polygon: the moves
   // turn no face over, so nothing is to be sampled there.
   if (in_one_axis_plane(a, b)) return true;
   const double limit2 = limit * limit;
-  return samples_within_squared(a, b, limit2) && samples_within_squared(b, a, limit2);
+  return samples_within(a, b, limit2) && samples_within(b, a, limit2);
 }
 
 }  // namespace mr::surface_union

@@ -19,10 +19,4 @@ using Triangle = std::array<V3, 3>;
 /// small move, this is their Hausdorff distance against the limit, up to the sampling.
 bool patches_within(const std::vector<Triangle>& a, const std::vector<Triangle>& b, double limit);
 
-/// patches_within in its parts, for callers that run the two directions at once:
-/// patches_within(a, b, limit) is in_one_axis_plane(a, b) or both samples_within.
-bool in_one_axis_plane(const std::vector<Triangle>& a, const std::vector<Triangle>& b);
-/// Every sample point of each face of `from` lies within `limit` of some face of `to`.
-bool samples_within(const std::vector<Triangle>& from, const std::vector<Triangle>& to, double limit);
-
 }  // namespace mr::surface_union

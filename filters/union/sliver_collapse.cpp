@@ -301,20 +301,6 @@ private:
   /// and within the bound; else the two patches are compared (patch_distance.h).
   bool stays_near(double pointwise = 1e300);
   std::vector<Triangle> near_old_, near_new_;  // scratch of stays_near and of collapses
-  /// patches_within(a, b, max_dev_), the two directions at once when there is a helper
-  /// (for the collapses' dry runs, outside near_and_clear).
-  bool patches_near(const std::vector<Triangle>& a, const std::vector<Triangle>& b) {
-    if (!helper_) return patches_within(a, b, max_dev_);
-    if (in_one_axis_plane(a, b)) return true;
-    bool back = false;
-    bool there = false;
-    helper_->run([&] { back = samples_within(b, a, max_dev_); },
-                 [&] {
-                   there = samples_within(a, b, max_dev_);
-                   return there;
-                 });
-    return there && back;
-  }
   /// Every proposed face lies within the deviation bound of the surface the cut made:
   /// the replaced faces' distance from it plus `pointwise` (how far any point of them
   /// moves, when known), or else measured at samples (moved corners, edge quarter points,
@@ -766,7 +752,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
     // Every point of the star moves at most as far as v (w is within the bound); where v
     // moves further, the faces may still lie near the old ones (a short edge on a smooth
     // star), or not (a star folded over: a fin of rabbit.obj lost 0.045 of its height).
-    if (norm(sub3(target, P(v))) > max_dev_ && !patches_near(near_old_, near_new_)) return false;
+    if (norm(sub3(target, P(v))) > max_dev_ && !patches_within(near_old_, near_new_, max_dev_)) return false;
     dv = dot(g, p) - s_old;
     return true;
   };
