@@ -13,23 +13,26 @@
 namespace mr {
 
 namespace {
-// How long a server spins for the next offer before it yields its core between polls
-// (it never sleeps: waking it took the caller a system call per offer, more than the
-// checks it takes over). Offers come every few to a few hundred microseconds.
+// How long a server spins for the next offer before it naps between polls, and the nap.
+// Offers come every few microseconds while the caller checks moves; in its other phases
+// a spinning server only took its core's share from the caller (two virtual cores may be
+// one physical one). It is never woken: that took the caller a system call per offer,
+// more than the checks it hands over.
 constexpr auto kSpinFor = std::chrono::microseconds(200);
+constexpr auto kNap = std::chrono::microseconds(50);
 }  // namespace
 
 void SideWorker::serve(const std::function<bool()>& idle) {
   auto idle_since = std::chrono::steady_clock::now();
   int polls = 0;
-  bool yielding = false, idle_left = bool(idle);
+  bool napping = false, idle_left = bool(idle);
   while (!stop_.load(std::memory_order_acquire)) {
     int offered = kOffered;
     if (state_.load(std::memory_order_relaxed) == kOffered &&
         state_.compare_exchange_strong(offered, kTaken, std::memory_order_acq_rel)) {
       fn_(arg_);
       state_.store(kDone, std::memory_order_release);
-      yielding = false;
+      napping = false;
       idle_since = std::chrono::steady_clock::now();
       continue;
     }
@@ -38,12 +41,12 @@ void SideWorker::serve(const std::function<bool()>& idle) {
       idle_since = std::chrono::steady_clock::now();
       continue;
     }
-    if (yielding) {
-      std::this_thread::yield();
+    if (napping) {  // (a nap: offers meanwhile are run by the caller)
+      std::this_thread::sleep_for(kNap);
       continue;
     }
     MR_SPIN_PAUSE();
-    if (++polls % 64 == 0 && std::chrono::steady_clock::now() - idle_since > kSpinFor) yielding = true;
+    if (++polls % 64 == 0 && std::chrono::steady_clock::now() - idle_since > kSpinFor) napping = true;
   }
 }
 

@@ -21,8 +21,8 @@ public:
 
   /// Runs offered tasks on the calling thread until stop() (returns at once after it).
   /// Between offers it runs `idle` (a piece of background work; false once there is
-  /// none left), then spins a while (offers come in quick succession) and then yields
-  /// its core between polls.
+  /// none left), then spins a while (offers come in quick succession) and then naps
+  /// between polls.
   void serve(const std::function<bool()>& idle = {});
   /// serve() returns, now or whenever it is called. No task may be pending.
   void stop();

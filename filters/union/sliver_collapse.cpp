@@ -542,8 +542,9 @@ bool Collapser::meets_new_face(int g) const {
 }
 
 void Collapser::test_near_faces() {
-  constexpr size_t kChunk = 2;
-  const size_t n = near_.size();
+  // About eight chunks a move: each claim moves the counter's cache line between the
+  // cores, and smaller chunks left this thread waiting for the helper's last one.
+  const size_t n = near_.size(), kChunk = std::max<size_t>(2, n / 8);
   for (size_t c; !share_.met.load(std::memory_order_relaxed) && !share_.cancel.load(std::memory_order_relaxed) &&
                  (c = share_.next.fetch_add(kChunk, std::memory_order_relaxed)) < n;)
     for (size_t k = c; k < std::min(n, c + kChunk); ++k)
