@@ -470,7 +470,8 @@ bool Collapser::near_cut_surface(double pointwise) {
   }
   // Samples: moved corners, edge quarter points, centroid. A face nearer than the farthest
   // sample so far, or than a quarter of the bound, ends a sample's search: the faces then
-  // keep a bound a little above their distance, and small moves later add to it.
+  // keep a bound a little above their distance, and small moves later add to it. (So a
+  // sample raises `worst` only to its exact distance, whatever face the search tried first.)
   double worst = 0.25 * max_dev_;
   int hint = -1;
   auto sample = [&](const V3& p) {
@@ -484,10 +485,13 @@ bool Collapser::near_cut_surface(double pointwise) {
     for (int z = 0; z < 3; ++z) {
       const V3& a = q[z];
       const V3& b = q[(z + 1) % 3];
-      // (A corner that stays where it is is a corner of the old faces, within their bound.)
-      if (a != P(new_ids_[i][z]) && !sample(a)) return false;
-      // An edge two new faces share is sampled with the first.
       const int ia = new_ids_[i][z], ib = new_ids_[i][(z + 1) % 3];
+      // (A corner that stays where it is is a corner of the old faces, within their bound.)
+      // A moved corner and an edge two new faces share are sampled with the first: a point
+      // sampled again cannot raise `worst` (some face is within it now).
+      bool corner_seen = false;
+      for (size_t j = 0; j < i && !corner_seen; ++j) corner_seen = has_corner(new_ids_[j], ia);
+      if (!corner_seen && a != P(ia) && !sample(a)) return false;
       bool seen = false;
       for (size_t j = 0; j < i && !seen; ++j)
         seen = has_corner(new_ids_[j], ia) && has_corner(new_ids_[j], ib);
