@@ -92,20 +92,29 @@ int FaceTree::build(int first, int count, std::vector<int>& order, const std::ve
   return id;
 }
 
-double FaceTree::distance(const V3& p, double enough, double limit, int* hint) const {
+double FaceTree::distance(const V3& p, double enough, double limit, Recent* recent) const {
   if (nodes_.empty()) return 2 * limit + 1;
   const double enough2 = enough * enough;
   double best2 = limit * limit;
   bool found = false;
   auto distance2 = [&](int i) { return triangles_[size_t(i)].squared_distance(p); };
-  if (hint && *hint >= 0) {
-    const double d2 = distance2(*hint);
-    if (d2 <= enough2) return std::sqrt(d2);
-    if (d2 <= best2) {
-      best2 = d2;
-      found = true;
+  if (recent)
+    for (int f : recent->faces) {
+      if (f < 0) continue;
+      const double d2 = distance2(f);
+      if (d2 <= enough2) return std::sqrt(d2);
+      if (d2 <= best2) {
+        best2 = d2;
+        found = true;
+      }
     }
-  }
+  // A face that ends the search is kept among the recent ones.
+  auto keep = [&](int i) {
+    if (!recent) return;
+    for (int f : recent->faces)
+      if (f == i) return;
+    recent->faces[recent->next++ % recent->faces.size()] = i;
+  };
   // Depth first, each node with its box's distance (computed once, by its parent); the
   // median split keeps the depth at log2 of the faces.
   struct Entry {
@@ -125,8 +134,10 @@ double FaceTree::distance(const V3& p, double enough, double limit, int* hint) c
         if (d2 <= best2) {
           best2 = d2;
           found = true;
-          if (hint) *hint = i;
-          if (best2 <= enough2) return std::sqrt(best2);
+          if (best2 <= enough2) {
+            keep(i);
+            return std::sqrt(best2);
+          }
         }
       }
       continue;

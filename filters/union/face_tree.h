@@ -20,12 +20,17 @@ public:
            const std::vector<int>& which);
   bool empty() const { return nodes_.empty(); }
 
+  /// Faces to try first: those that ended the last few searches (samples close together
+  /// are mostly near the same faces). Start with a default one.
+  struct Recent {
+    std::array<int, 4> faces{-1, -1, -1, -1};
+    size_t next = 0;
+  };
   /// Distance from p to the nearest face, with two shortcuts: the search ends at the first
   /// face within `enough` (the result is then at most `enough`), and faces beyond `limit`
-  /// are not looked at (the result is then larger than `limit`).
-  /// `hint` (in and out, start with -1): a face to try first, the one that ended the
-  /// previous search (samples close together are mostly near the same face).
-  double distance(const V3& p, double enough, double limit, int* hint = nullptr) const;
+  /// are not looked at (the result is then larger than `limit`). Otherwise the result is
+  /// the exact distance, whatever `recent` holds.
+  double distance(const V3& p, double enough, double limit, Recent* recent = nullptr) const;
 
 private:
   struct Node {

@@ -473,9 +473,9 @@ bool Collapser::near_cut_surface(double pointwise) {
   // keep a bound a little above their distance, and small moves later add to it. (So a
   // sample raises `worst` only to its exact distance, whatever face the search tried first.)
   double worst = 0.25 * max_dev_;
-  int hint = -1;
+  FaceTree::Recent recent;
   auto sample = [&](const V3& p) {
-    worst = std::max(worst, cut_surface_.distance(p, worst, max_dev_, &hint));
+    worst = std::max(worst, cut_surface_.distance(p, worst, max_dev_, &recent));
     return worst <= max_dev_;
   };
   for (size_t i = 0; i < new_pos_.size(); ++i) {
