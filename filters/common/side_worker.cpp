@@ -30,7 +30,11 @@ void SideWorker::serve(const std::function<bool()>& idle) {
     int offered = kOffered;
     if (state_.load(std::memory_order_relaxed) == kOffered &&
         state_.compare_exchange_strong(offered, kTaken, std::memory_order_acq_rel)) {
-      fn_(arg_);
+      try {
+        fn_(arg_);
+      } catch (...) {
+        error_ = std::current_exception();  // rethrown to the caller by finish()
+      }
       state_.store(kDone, std::memory_order_release);
       napping = false;
       idle_since = std::chrono::steady_clock::now();
@@ -65,7 +69,10 @@ void SideWorker::finish(bool needed) {
     return;
   }
   while (state_.load(std::memory_order_acquire) != kDone) MR_SPIN_PAUSE();
+  std::exception_ptr error = std::move(error_);
+  error_ = nullptr;
   state_.store(kIdle, std::memory_order_relaxed);
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace mr

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <exception>
 #include <functional>
 #include <type_traits>
 
@@ -30,10 +31,18 @@ public:
   /// Runs `beside` on the serving thread if it takes it up, `here` on this one; returns
   /// once both have run. `beside` runs here too when nobody took it in time, unless
   /// `here` returned false, which makes `beside` unnecessary (then it may not run).
+  /// An exception of either reaches the caller, after `beside` is over (it may use the
+  /// caller's data).
   template <class Beside, class Here>
   void run(Beside&& beside, Here&& here) {
     offer(&call<std::remove_reference_t<Beside>>, &beside);
-    const bool needed = here();
+    bool needed = false;
+    try {
+      needed = here();
+    } catch (...) {
+      finish(false);
+      throw;
+    }
     finish(needed);
   }
 
@@ -49,6 +58,7 @@ private:
   std::atomic<int> state_{kIdle};
   void (*fn_)(void*) = nullptr;  // written before kOffered is published
   void* arg_ = nullptr;
+  std::exception_ptr error_;  // what the served task threw, published with kDone
   std::atomic<bool> stop_{false};
 };
 

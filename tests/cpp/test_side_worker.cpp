@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -112,4 +113,30 @@ TEST(SideWorker, BackgroundWorkRunsBetweenTasksUntilNoneIsLeft) {
   worker.stop();
   server.join();
   EXPECT_TRUE(served.load());
+}
+
+TEST(SideWorker, AnExceptionOfEitherPartReachesTheCaller) {
+  mr::SideWorker worker;
+  std::thread server([&] { worker.serve(); });
+  for (int i = 0; i < 200; ++i) {
+    // The task throws, wherever it runs.
+    EXPECT_THROW(worker.run([] { throw std::runtime_error("beside"); }, [] { return true; }), std::runtime_error);
+    // The caller's part throws: the task is over (or dropped) when the exception arrives.
+    std::atomic<int> running{0};
+    EXPECT_THROW(worker.run(
+                     [&] {
+                       ++running;
+                       std::this_thread::sleep_for(std::chrono::microseconds(20));
+                       --running;
+                     },
+                     []() -> bool { throw std::logic_error("here"); }),
+                 std::logic_error);
+    EXPECT_EQ(running.load(), 0);
+  }
+  // Still serving afterwards.
+  int ran = 0;
+  worker.run([&] { ++ran; }, [] { return true; });
+  EXPECT_EQ(ran, 1);
+  worker.stop();
+  server.join();
 }
