@@ -52,19 +52,28 @@ TEST(UnionFaceTree, DistanceEqualsTheScanOfAllFaces) {
   const FaceTree tree(v, f, all);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.2, 1.2), h(-0.3, 0.3);
+  std::uniform_int_distribution<int> face(0, int(f.size()) - 1);
+  // Faces tried first change the work, not the answer: any faces, far or near.
+  FaceTree::Recent recent;
+  recent.faces = {face(rng), face(rng), -1, face(rng)};
   for (int k = 0; k < 500; ++k) {
     const V3 p{u(rng), u(rng), h(rng)};
     const double exact = scanned_distance(p, v, f);
     // No shortcut: the nearest face.
     EXPECT_NEAR(tree.distance(p, 0, 10), exact, 1e-12);
+    EXPECT_NEAR(tree.distance(p, 0, 10, &recent), exact, 1e-12);
     // Faces beyond the limit are not looked at: the result then says "beyond".
     const double limit = 0.5 * exact;
     EXPECT_GT(tree.distance(p, 0, limit), limit);
-    // Enough: some face within it ends the search.
+    // Enough: some face within it ends the search; beyond it the distance is exact.
     const double enough = 2 * exact + 1e-9;
     const double d = tree.distance(p, enough, 10);
     EXPECT_LE(d, enough);
     EXPECT_GE(d, exact - 1e-12);
+    const double fixed = 0.02, e = tree.distance(p, fixed, 10, &recent);
+    if (exact > fixed) EXPECT_NEAR(e, exact, 1e-12);
+    else EXPECT_LE(e, fixed);
+    EXPECT_GE(e, exact - 1e-12);
   }
 }
 
@@ -84,29 +93,4 @@ TEST(UnionFaceTree, OnlyTheChosenFacesCount) {
   EXPECT_GT(tree.distance({0.9, 0.5, 0}, 0, 10), 0.39);
   EXPECT_TRUE(FaceTree().empty());
   EXPECT_GT(FaceTree().distance({0, 0, 0}, 0, 1), 1);
-}
-
-TEST(UnionFaceTree, RecentFacesChangeTheWorkNotTheAnswer) {
-  std::vector<V3> v;
-  std::vector<std::array<int, 3>> f;
-  wavy_sheet(v, f);
-  std::vector<int> all(f.size());
-  std::iota(all.begin(), all.end(), 0);
-  const FaceTree tree(v, f, all);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-0.2, 1.2), h(-0.3, 0.3);
-  std::uniform_int_distribution<int> face(0, int(f.size()) - 1);
-  FaceTree::Recent recent;
-  recent.faces = {face(rng), face(rng), -1, face(rng)};  // any faces, far or near
-  for (int k = 0; k < 500; ++k) {
-    const V3 p{u(rng), u(rng), h(rng)};
-    const double exact = scanned_distance(p, v, f);
-    // Without the shortcut, and beyond `enough`, the exact distance whatever was recent.
-    EXPECT_NEAR(tree.distance(p, 0, 10, &recent), exact, 1e-12);
-    const double enough = 0.02;
-    const double d = tree.distance(p, enough, 10, &recent);
-    if (exact > enough) EXPECT_NEAR(d, exact, 1e-12);
-    else EXPECT_LE(d, enough + 1e-15);
-    EXPECT_GE(d, exact - 1e-12);
-  }
 }
