@@ -122,7 +122,7 @@ def main():
     ap.add_argument("--subdiv", type=int, default=3, help="sphere subdivision (3: 1280 triangles each)")
     ap.add_argument("--meshlab-max-bodies", type=int, default=50,
                     help="skip MeshLab's chained union above this many bodies (it grows quadratically)")
-    ap.add_argument("--small-repeats", type=int, default=15,
+    ap.add_argument("--small-repeats", type=int, default=30,
                     help="repeats of cases whose runs take under 0.1 s (their best of a few is noise)")
     ap.add_argument("--out", default=str(REPO / "benchmarks" / "union.md"))
     args = ap.parse_args()
