@@ -29,6 +29,7 @@ import numpy as np
 REPO = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "python"))
 import meshregrid  # noqa: E402,F401  (loads the plugins)
+from meshregrid.quality import hausdorff  # noqa: E402
 import pymeshlab  # noqa: E402
 
 DATA = REPO.parent / "shared" / "data"
@@ -102,10 +103,8 @@ def measure(ms, mid, ref_id, diag, target, angle, in_ridges, seconds):
     und, n = np.unique(np.sort(directed, axis=1), axis=0, return_counts=True)
     boundary_v = np.unique(und[n == 1].ravel())
     interior = np.setdiff1d(np.arange(len(v)), boundary_v)
-    # Vertices and edges too, and many face samples: with 20k the maximum moved by ~10% between runs.
-    kw = dict(samplenum=max(20 * len(f), 200000), samplevert=True, sampleedge=True, sampleface=True)
-    h = max(ms.get_hausdorff_distance(sampledmesh=mid, targetmesh=ref_id, **kw)["max"],
-            ms.get_hausdorff_distance(sampledmesh=ref_id, targetmesh=mid, **kw)["max"])
+    # Many samples: with 20k the maximum moved by ~10% between runs.
+    h = hausdorff(ms, mid, ref_id, max(20 * len(f), 200000))
     out_a, out_b = ridges(m, angle)
     tol = 0.05 * target
     in_a, in_b = in_ridges

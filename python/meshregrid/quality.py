@@ -18,18 +18,32 @@ def face_angles(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
 def one_way_hausdorff(ms: pymeshlab.MeshSet, sampled_id: int, target_id: int, samples: int,
                       maxdist: float = None) -> float:
     """Largest distance from points sampled on layer ``sampled_id`` (vertices, edges and
-    faces: PyMeshLab's default samples 8 vertices) to layer ``target_id``. Distances beyond
-    ``maxdist`` (default: PyMeshLab's 5% of the diagonal) are not measured."""
-    kw = dict(sampledmesh=sampled_id, targetmesh=target_id, samplenum=samples, samplevert=True,
-              sampleedge=True, sampleface=True)
-    if maxdist is not None:
-        kw["maxdist"] = pymeshlab.PureValue(maxdist)
-    return ms.get_hausdorff_distance(**kw)["max"]
+    faces: PyMeshLab's default samples 8 vertices) to layer ``target_id``. PyMeshLab drops the
+    samples farther than ``maxdist`` from the maximum (its default: half a diagonal), so the
+    default here is the diagonal of the box around both layers, which no distance exceeds."""
+    if maxdist is None:
+        boxes = [ms.mesh(i).bounding_box() for i in (sampled_id, target_id)]
+        lo = np.minimum(boxes[0].min(), boxes[1].min())
+        hi = np.maximum(boxes[0].max(), boxes[1].max())
+        maxdist = float(np.linalg.norm(hi - lo))
+    return ms.get_hausdorff_distance(sampledmesh=sampled_id, targetmesh=target_id, samplenum=samples,
+                                     samplevert=True, sampleedge=True, sampleface=True,
+                                     maxdist=pymeshlab.PureValue(maxdist))["max"]
+
+
+def hausdorff(ms: pymeshlab.MeshSet, a_id: int, b_id: int, samples: int) -> float:
+    """Symmetric Hausdorff distance between layers ``a_id`` and ``b_id``, sampled both ways
+    (one_way_hausdorff); the current layer stays the same."""
+    current = ms.current_mesh_id()
+    d = max(one_way_hausdorff(ms, a_id, b_id, samples), one_way_hausdorff(ms, b_id, a_id, samples))
+    ms.set_current_mesh(current)
+    return d
 
 
 def mesh_quality(ms: pymeshlab.MeshSet, mesh_id: int, reference_id: int = None) -> dict:
     """Angles of layer ``mesh_id`` and, with a reference layer, the symmetric Hausdorff
-    distance to it (sampled on faces, as a fraction of the reference's diagonal)."""
+    distance to it (sampled on vertices, edges and faces, in percent of the reference's
+    diagonal)."""
     m = ms.mesh(mesh_id)
     angles = face_angles(m.vertex_matrix(), m.face_matrix())
     smallest = angles.min(axis=1)
@@ -43,10 +57,6 @@ def mesh_quality(ms: pymeshlab.MeshSet, mesh_id: int, reference_id: int = None) 
     }
     if reference_id is not None:
         diag = ms.mesh(reference_id).bounding_box().diagonal()
-        samples = max(10000, 10 * m.face_number())
-        current = ms.current_mesh_id()
-        d = max(one_way_hausdorff(ms, mesh_id, reference_id, samples, diag),
-                one_way_hausdorff(ms, reference_id, mesh_id, samples, diag))
-        ms.set_current_mesh(current)
+        d = hausdorff(ms, mesh_id, reference_id, max(10000, 10 * m.face_number()))
         out["hausdorff_pct_diag"] = float(100 * d / diag)
     return out
