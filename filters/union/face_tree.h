@@ -21,7 +21,7 @@ public:
   bool empty() const { return nodes_.empty(); }
 
   /// Faces to try first: those that ended the last few searches (samples close together
-  /// are mostly near the same faces). Start with a default one.
+  /// are mostly near the same faces). Start from a default-constructed one.
   struct Recent {
     std::array<int, 4> faces{-1, -1, -1, -1};
     size_t next = 0;
