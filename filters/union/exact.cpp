@@ -1,5 +1,7 @@
 #include "union/exact.h"
 
+#include "union/crossing_doubles.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -18,9 +20,13 @@ std::mutex& lock_of(const void* p) {
 }  // namespace
 
 QPoint::QPoint(const QPoint& o) : d(o.d), exact_double(o.exact_double) {
-  if (!o.q_.load(std::memory_order_acquire)) return;
-  o.q(0);  // canonical (and complete) before it is read
-  q_.store(new std::array<mpq_class, 3>(*o.q_.load(std::memory_order_acquire)), std::memory_order_relaxed);
+  if (o.q_.load(std::memory_order_acquire)) {
+    o.q(0);  // canonical (and complete) before it is read
+    q_.store(new std::array<mpq_class, 3>(*o.q_.load(std::memory_order_acquire)), std::memory_order_relaxed);
+  } else if (o.recipe_) {
+    recipe_ = new Recipe(*o.recipe_);
+    canonical_.store(false, std::memory_order_relaxed);
+  }
 }
 
 QPoint& QPoint::operator=(const QPoint& o) {
@@ -36,16 +42,38 @@ const mpq_class& QPoint::q(int k) const {
 
 const mpq_class& QPoint::q_slow(int k) const {
   std::lock_guard<std::mutex> lock(lock_of(this));
-  auto* q = q_.load(std::memory_order_acquire);
-  if (!q) {
-    q = new std::array<mpq_class, 3>{mpq_class(d[0]), mpq_class(d[1]), mpq_class(d[2])};
-    q_.store(q, std::memory_order_release);
-  }
+  auto* q = build_locked();
   if (!canonical_.load(std::memory_order_acquire)) {
     for (auto& c : *q) c.canonicalize();
     canonical_.store(true, std::memory_order_release);
   }
   return (*q)[k];
+}
+
+namespace {
+std::array<mpq_class, 3>* rationals_of(const QPoint::Recipe& recipe);
+}  // namespace
+
+std::array<mpq_class, 3>* QPoint::build_locked() const {
+  auto* q = q_.load(std::memory_order_acquire);
+  if (q) return q;
+  q = recipe_ ? rationals_of(*recipe_) : new std::array<mpq_class, 3>{mpq_class(d[0]), mpq_class(d[1]), mpq_class(d[2])};
+  q_.store(q, std::memory_order_release);
+  return q;
+}
+
+const std::array<mpq_class, 3>* QPoint::built() const {
+  if (const auto* q = q_.load(std::memory_order_acquire)) return q;
+  std::lock_guard<std::mutex> lock(lock_of(this));
+  return build_locked();
+}
+
+QPoint QPoint::lazy_crossing(const std::array<double, 3>& d, const Recipe& recipe) {
+  QPoint r;
+  r.d = d;
+  r.recipe_ = new Recipe(recipe);
+  r.canonical_.store(false, std::memory_order_relaxed);  // built unreduced
+  return r;
 }
 
 QPoint make_point(const std::array<double, 3>& p) {
@@ -396,7 +424,7 @@ int orient3d_homogeneous_sign(const QPoint& a, const QPoint& b, const QPoint& c,
 }  // namespace
 
 void QPoint::homogeneous(const int* axes, int count, mpz_class* n, mpz_class& w) const {
-  const auto* q = q_.load(std::memory_order_acquire);
+  const auto* q = exact_double || !recipe_ ? q_.load(std::memory_order_acquire) : built();
   if (exact_double || !q) {  // the doubles are the rationals: integers times 2^e
     const double* vals[3];
     for (int m = 0; m < count; ++m) vals[m] = &d[axes[m]];
@@ -426,7 +454,98 @@ void QPoint::homogeneous(const int* axes, int count, mpz_class* n, mpz_class& w)
   }
 }
 
-QPoint crossing_from_integers(mpz_class& oa, mpz_class& ob, const mpz_class* A, const mpz_class* B, int e);
+namespace {
+
+/// The integers a crossing is made of, all inputs scaled by one power of two: a and b
+/// (A, B), their sides oa and ob of the plane or the line, the exponent e.
+struct CrossingIntegers {
+  const mpz_class *A, *B;
+  mpz_class *oa, *ob;
+  int e;
+};
+
+/// For Recipe::kEdgePlane: v = a, b, f0, f1, f2. Scratch of this thread, valid until the next call.
+CrossingIntegers edge_plane_integers(const double* v) {
+  const double* vals[15];
+  for (int m = 0; m < 15; ++m) vals[m] = &v[m];
+  thread_local mpz_class z[15];  // reused across calls (saves allocations)
+  thread_local mpz_class u[3], w[3], ra[3], rb[3], n[3], oa, ob;
+  const int e = scale_to_integers(vals, 15, z);
+  const mpz_class *A = z, *B = z + 3, *F0 = z + 6, *F1 = z + 9, *F2 = z + 12;
+  for (int k = 0; k < 3; ++k) {
+    u[k] = F1[k] - F0[k];
+    w[k] = F2[k] - F0[k];
+    ra[k] = A[k] - F0[k];
+    rb[k] = B[k] - F0[k];
+  }
+  // n = u x w and the two sides, with fused multiply-adds (no temporaries).
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    mpz_mul(n[k].get_mpz_t(), u[i].get_mpz_t(), w[j].get_mpz_t());
+    mpz_submul(n[k].get_mpz_t(), u[j].get_mpz_t(), w[i].get_mpz_t());
+  }
+  mpz_mul(oa.get_mpz_t(), n[0].get_mpz_t(), ra[0].get_mpz_t());
+  mpz_mul(ob.get_mpz_t(), n[0].get_mpz_t(), rb[0].get_mpz_t());
+  for (int k = 1; k < 3; ++k) {
+    mpz_addmul(oa.get_mpz_t(), n[k].get_mpz_t(), ra[k].get_mpz_t());
+    mpz_addmul(ob.get_mpz_t(), n[k].get_mpz_t(), rb[k].get_mpz_t());
+  }
+  return {A, B, &oa, &ob, e};
+}
+
+/// For Recipe::kSegmentLine: v = a, b, c0_i, c0_j, c1_i, c1_j. Scratch as above.
+CrossingIntegers segment_line_integers(const double* v, int i, int j) {
+  const double* vals[10];
+  for (int m = 0; m < 10; ++m) vals[m] = &v[m];
+  thread_local mpz_class z[10];
+  thread_local mpz_class ux, uy, oa, ob;
+  const int e = scale_to_integers(vals, 10, z);
+  const mpz_class *A = z, *B = z + 3;
+  ux = z[8] - z[6];
+  uy = z[9] - z[7];
+  // orient2d(c0, c1, x) = ux (x_j - c0_j) - uy (x_i - c0_i)
+  oa = ux * (A[j] - z[7]) - uy * (A[i] - z[6]);
+  ob = ux * (B[j] - z[7]) - uy * (B[i] - z[6]);
+  return {A, B, &oa, &ob, e};
+}
+
+CrossingIntegers integers_of(const QPoint::Recipe& recipe) {
+  return recipe.kind == QPoint::Recipe::kEdgePlane ? edge_plane_integers(recipe.v)
+                                                   : segment_line_integers(recipe.v, recipe.i, recipe.j);
+}
+
+/// x = (oa B - ob A) / (oa - ob) 2^e, unreduced, with one positive denominator (the gcd
+/// is the expensive part, and most crossings are never needed exactly). Flips the signs
+/// of oa and ob where the denominator needs it.
+void crossing_rationals(const CrossingIntegers& c, std::array<mpq_class, 3>& x) {
+  mpz_class &oa = *c.oa, &ob = *c.ob;
+  thread_local mpz_class den;
+  mpz_sub(den.get_mpz_t(), oa.get_mpz_t(), ob.get_mpz_t());
+  if (sgn(den) < 0) {  // a positive denominator: the truncated doubles need no canonical form
+    mpz_neg(den.get_mpz_t(), den.get_mpz_t());
+    mpz_neg(oa.get_mpz_t(), oa.get_mpz_t());
+    mpz_neg(ob.get_mpz_t(), ob.get_mpz_t());
+  }
+  if (c.e < 0) mpz_mul_2exp(den.get_mpz_t(), den.get_mpz_t(), -c.e);  // once for the three coordinates
+  for (int k = 0; k < 3; ++k) {
+    mpz_ptr num = x[size_t(k)].get_num_mpz_t();
+    mpz_mul(num, oa.get_mpz_t(), c.B[k].get_mpz_t());  // no temporaries
+    mpz_submul(num, ob.get_mpz_t(), c.A[k].get_mpz_t());
+    if (c.e > 0) mpz_mul_2exp(num, num, c.e);
+    mpz_set(x[size_t(k)].get_den_mpz_t(), den.get_mpz_t());
+  }
+}
+
+std::array<mpq_class, 3>* rationals_of(const QPoint::Recipe& recipe) {
+  auto* x = new std::array<mpq_class, 3>();
+  crossing_rationals(integers_of(recipe), *x);
+  return x;
+}
+
+/// A crossing's doubles (its rationals truncated), without keeping the rationals.
+std::array<double, 3> truncated_crossing(const QPoint::Recipe& recipe);
+
+}  // namespace
 
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2) {
   // CAD: an edge along a coordinate axis crosses a plane across that axis where the
@@ -439,65 +558,15 @@ QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, c
       return make_point(p);
     }
   }
-  const double* vals[15];
+  QPoint::Recipe recipe{QPoint::Recipe::kEdgePlane, 0, 0, {}};
   for (int k = 0; k < 3; ++k) {
-    vals[k] = &a[k];
-    vals[3 + k] = &b[k];
-    vals[6 + k] = &f0[k];
-    vals[9 + k] = &f1[k];
-    vals[12 + k] = &f2[k];
+    recipe.v[k] = a[k];
+    recipe.v[3 + k] = b[k];
+    recipe.v[6 + k] = f0[k];
+    recipe.v[9 + k] = f1[k];
+    recipe.v[12 + k] = f2[k];
   }
-  thread_local mpz_class z[15];  // reused across calls (saves allocations)
-  thread_local mpz_class u[3], v[3], ra[3], rb[3], n[3], oa, ob;
-  const int e = scale_to_integers(vals, 15, z);
-  const mpz_class *A = z, *B = z + 3, *F0 = z + 6, *F1 = z + 9, *F2 = z + 12;
-  for (int k = 0; k < 3; ++k) {
-    u[k] = F1[k] - F0[k];
-    v[k] = F2[k] - F0[k];
-    ra[k] = A[k] - F0[k];
-    rb[k] = B[k] - F0[k];
-  }
-  // n = u x v and the two sides, with fused multiply-adds (no temporaries).
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    mpz_mul(n[k].get_mpz_t(), u[i].get_mpz_t(), v[j].get_mpz_t());
-    mpz_submul(n[k].get_mpz_t(), u[j].get_mpz_t(), v[i].get_mpz_t());
-  }
-  mpz_mul(oa.get_mpz_t(), n[0].get_mpz_t(), ra[0].get_mpz_t());
-  mpz_mul(ob.get_mpz_t(), n[0].get_mpz_t(), rb[0].get_mpz_t());
-  for (int k = 1; k < 3; ++k) {
-    mpz_addmul(oa.get_mpz_t(), n[k].get_mpz_t(), ra[k].get_mpz_t());
-    mpz_addmul(ob.get_mpz_t(), n[k].get_mpz_t(), rb[k].get_mpz_t());
-  }
-  return crossing_from_integers(oa, ob, A, B, e);
-}
-
-/// The point (oa B - ob A) / (oa - ob) 2^e, for integer points A, B, with its
-/// truncated doubles; the rationals stay unreduced until used (the gcd is the
-/// expensive part, and most crossings are never needed exactly). oa and ob are scratch
-/// (their signs may be flipped).
-QPoint crossing_from_integers(mpz_class& oa, mpz_class& ob, const mpz_class* A, const mpz_class* B, int e) {
-  thread_local mpz_class den;
-  mpz_sub(den.get_mpz_t(), oa.get_mpz_t(), ob.get_mpz_t());
-  if (sgn(den) < 0) {  // a positive denominator: the truncated doubles need no canonical form
-    mpz_neg(den.get_mpz_t(), den.get_mpz_t());
-    mpz_neg(oa.get_mpz_t(), oa.get_mpz_t());
-    mpz_neg(ob.get_mpz_t(), ob.get_mpz_t());
-  }
-  if (e < 0) mpz_mul_2exp(den.get_mpz_t(), den.get_mpz_t(), -e);  // once for the three coordinates
-  QPoint r;
-  auto& q = r.own_q();
-  for (int k = 0; k < 3; ++k) {
-    mpq_class& c = q[k];
-    mpz_ptr num = c.get_num_mpz_t();
-    mpz_mul(num, oa.get_mpz_t(), B[k].get_mpz_t());  // no temporaries
-    mpz_submul(num, ob.get_mpz_t(), A[k].get_mpz_t());
-    if (e > 0) mpz_mul_2exp(num, num, e);
-    mpz_set(c.get_den_mpz_t(), den.get_mpz_t());
-    r.d[k] = c.get_d();
-  }
-  r.canonical_ = false;
-  return r;
+  return QPoint::lazy_crossing(truncated_crossing(recipe), recipe);
 }
 
 QPoint segment_line_crossing(const double* a, const double* b, const double* c0, const double* c1, int i, int j) {
@@ -515,18 +584,22 @@ QPoint segment_line_crossing(const double* a, const double* b, const double* c0,
       return make_point(p);
     }
   }
-  const double* vals[10] = {&a[0], &a[1], &a[2], &b[0], &b[1], &b[2], &c0[i], &c0[j], &c1[i], &c1[j]};
-  thread_local mpz_class z[10];
-  thread_local mpz_class ux, uy, oa, ob;
-  const int e = scale_to_integers(vals, 10, z);
-  const mpz_class *A = z, *B = z + 3;
-  ux = z[8] - z[6];
-  uy = z[9] - z[7];
-  // orient2d(c0, c1, x) = ux (x_j - c0_j) - uy (x_i - c0_i)
-  oa = ux * (A[j] - z[7]) - uy * (A[i] - z[6]);
-  ob = ux * (B[j] - z[7]) - uy * (B[i] - z[6]);
-  return crossing_from_integers(oa, ob, A, B, e);
+  QPoint::Recipe recipe{QPoint::Recipe::kSegmentLine, static_cast<signed char>(i), static_cast<signed char>(j),
+                        {a[0], a[1], a[2], b[0], b[1], b[2], c0[i], c0[j], c1[i], c1[j]}};
+  return QPoint::lazy_crossing(truncated_crossing(recipe), recipe);
 }
+
+namespace {
+
+std::array<double, 3> truncated_crossing(const QPoint::Recipe& recipe) {
+  std::array<double, 3> d;
+  if (truncated_crossing_on_stack(recipe, d)) return d;
+  thread_local std::array<mpq_class, 3> x;  // reused: no allocation per crossing
+  crossing_rationals(integers_of(recipe), x);
+  return {x[0].get_d(), x[1].get_d(), x[2].get_d()};
+}
+
+}  // namespace
 
 QPoint segment_line_crossing(const QPoint& a, const QPoint& b, const QPoint& c, const QPoint& d, int i, int j) {
   thread_local mpz_class A[3], B[3], wa, wb, C[2], D[2], wc, wd, ha, hb, t, den;
@@ -541,7 +614,7 @@ QPoint segment_line_crossing(const QPoint& a, const QPoint& b, const QPoint& c, 
   homogeneous_orient2d(hb, t, {C[0], C[1], wc}, {D[0], D[1], wd}, {B[i], B[j], wb});
   mpz_mul(den.get_mpz_t(), ha.get_mpz_t(), wb.get_mpz_t());
   mpz_submul(den.get_mpz_t(), hb.get_mpz_t(), wa.get_mpz_t());
-  if (sgn(den) < 0) {  // a positive denominator, as crossing_from_integers
+  if (sgn(den) < 0) {  // a positive denominator, as crossing_rationals
     mpz_neg(den.get_mpz_t(), den.get_mpz_t());
     mpz_neg(ha.get_mpz_t(), ha.get_mpz_t());
     mpz_neg(hb.get_mpz_t(), hb.get_mpz_t());

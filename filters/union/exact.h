@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <utility>
 
 namespace mr::surface_union {
 
@@ -23,19 +24,32 @@ public:
   /// run on the doubles with an integer fallback and build no rationals.
   bool exact_double = false;
 
+  /// The doubles a crossing was computed from: its rationals are built from them only
+  /// when a predicate needs them (most crossings are decided on their doubles alone).
+  struct Recipe {
+    enum Kind : signed char { kEdgePlane, kSegmentLine } kind;
+    signed char i, j;  // kSegmentLine: the projection's axes
+    double v[15];      // kEdgePlane: a, b, f0, f1, f2; kSegmentLine: a, b, c0_i, c0_j, c1_i, c1_j
+  };
+
   QPoint() = default;
-  ~QPoint() { delete q_.load(std::memory_order_relaxed); }
+  ~QPoint() {
+    delete q_.load(std::memory_order_relaxed);
+    delete recipe_;
+  }
   QPoint(const QPoint& o);
   QPoint& operator=(const QPoint& o);
   QPoint(QPoint&& o) noexcept
       : d(o.d), exact_double(o.exact_double), q_(o.q_.exchange(nullptr, std::memory_order_relaxed)),
-        canonical_(o.canonical_.load(std::memory_order_relaxed)) {}
+        canonical_(o.canonical_.load(std::memory_order_relaxed)), recipe_(std::exchange(o.recipe_, nullptr)) {}
   QPoint& operator=(QPoint&& o) noexcept {
     if (this != &o) {
       d = o.d;
       exact_double = o.exact_double;
       delete q_.exchange(o.q_.exchange(nullptr, std::memory_order_relaxed), std::memory_order_relaxed);
       canonical_.store(o.canonical_.load(std::memory_order_relaxed), std::memory_order_relaxed);
+      delete recipe_;
+      recipe_ = std::exchange(o.recipe_, nullptr);
     }
     return *this;
   }
@@ -51,8 +65,10 @@ private:
   friend QPoint make_point(const mpq_class& x, const mpq_class& y, const mpq_class& z);
   friend QPoint make_point_canonical(mpq_class&& x, mpq_class&& y, mpq_class&& z);
   friend QPoint edge_plane_crossing(const double*, const double*, const double*, const double*, const double*);
-  friend QPoint crossing_from_integers(mpz_class&, mpz_class&, const mpz_class*, const mpz_class*, int);
+  friend QPoint segment_line_crossing(const double*, const double*, const double*, const double*, int, int);
   friend QPoint segment_line_crossing(const QPoint&, const QPoint&, const QPoint&, const QPoint&, int, int);
+  /// A crossing with these doubles, its rationals to be built from `recipe`.
+  static QPoint lazy_crossing(const std::array<double, 3>& d, const Recipe& recipe);
   // Built or put in canonical form on first use, possibly by several threads reading
   // the same point at once: the first one does it under a lock and publishes it.
   const mpq_class& q_slow(int k) const;
@@ -60,9 +76,15 @@ private:
     if (!q_.load(std::memory_order_relaxed)) q_.store(new std::array<mpq_class, 3>(), std::memory_order_relaxed);
     return *q_.load(std::memory_order_relaxed);
   }
+  /// The rationals, built from recipe_ (or from the doubles) if they are not yet: the
+  /// lock of this point held.
+  std::array<mpq_class, 3>* build_locked() const;
+  /// The same, taking the lock when they have to be built.
+  const std::array<mpq_class, 3>* built() const;
   mutable std::atomic<std::array<mpq_class, 3>*> q_{nullptr};
   // false: the rationals are unreduced, with one positive denominator (crossings).
   mutable std::atomic<bool> canonical_{true};
+  const Recipe* recipe_ = nullptr;  // owned; null unless a crossing
 };
 
 QPoint make_point(const std::array<double, 3>& p);
