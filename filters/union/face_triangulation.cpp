@@ -58,13 +58,26 @@ private:
   std::unordered_map<uint64_t, int> map_;
 };
 
+/// The buffers of a face's triangulation, one set per thread reused by all its faces
+/// (allocating them per face cost a fifth of the step).
+struct TriangulatorScratch {
+  EdgeTable edges;
+  std::vector<int> ids, on;
+  std::unordered_map<int, int> local_of;  // for faces with many points
+  std::vector<std::array<int, 3>> tri;
+  std::vector<std::array<int, 2>> segs, split, constraints;
+  std::vector<long> changed_at, cleared_at;  // improve()'s
+};
+
 class FaceTriangulator {
 public:
-  FaceTriangulator(const PointTable& points, const std::array<int, 3>& corners, EdgeTable& edges,
+  FaceTriangulator(const PointTable& points, const std::array<int, 3>& corners, TriangulatorScratch& scratch,
                    std::vector<FaceCrossing>& crossings)
-      : pts_(points), pr_(face_projection(points[corners[0]], points[corners[1]], points[corners[2]])), edge_(edges),
-        crossings_(crossings) {
-    for (int c : corners) ids_.push_back(c);
+      : pts_(points), pr_(face_projection(points[corners[0]], points[corners[1]], points[corners[2]])),
+        scratch_(scratch), ids_(scratch.ids), local_of_(scratch.local_of), tri_(scratch.tri), edge_(scratch.edges),
+        segs_(scratch.constraints), crossings_(crossings) {
+    ids_.assign(corners.begin(), corners.end());
+    local_of_.clear();
   }
 
   void run(const FaceConstraints& c, std::vector<std::array<int, 3>>& out);
@@ -92,9 +105,27 @@ private:
         return true;
     return false;
   }
+  /// The local index of point-table index (or crossing) `id`, added if new. Faces have
+  /// a few points, found by a scan; a map once there are many.
+  int local(int id) {
+    if (ids_.size() <= kScanned) {
+      for (size_t k = 0; k < ids_.size(); ++k)
+        if (ids_[k] == id) return int(k);
+    } else {
+      if (local_of_.empty())
+        for (size_t k = 0; k < ids_.size(); ++k) local_of_[ids_[k]] = int(k);
+      const auto it = local_of_.find(id);
+      if (it != local_of_.end()) return it->second;
+      local_of_[id] = int(ids_.size());
+    }
+    ids_.push_back(id);
+    return int(ids_.size()) - 1;
+  }
+  static constexpr size_t kScanned = 32;
   bool in_box(int p, int a, int b) const;
   bool between(int p, int a, int b) const;
-  std::vector<std::array<int, 2>> split_at_points(const std::vector<std::array<int, 2>>& segs) const;
+  /// The segments (a, b) split at the points on them, sorted and unique, into `out`.
+  void split_at_points(const std::vector<std::array<int, 2>>& segs, std::vector<std::array<int, 2>>& out) const;
   bool add_crossings(const std::vector<std::array<int, 2>>& segs);
   void insert_point(int p);
   void recover(int a, int b);
@@ -107,11 +138,12 @@ private:
 
   const PointTable& pts_;
   Projection pr_;
-  std::vector<int> ids_;  // local -> point-table index
-  std::unordered_map<int, int> local_of_;
-  std::vector<std::array<int, 3>> tri_;
+  TriangulatorScratch& scratch_;
+  std::vector<int>& ids_;  // local -> point-table index
+  std::unordered_map<int, int>& local_of_;  // its inverse, once ids_ is longer than kScanned
+  std::vector<std::array<int, 3>>& tri_;
   EdgeTable& edge_;  // directed edge -> triangle
-  std::vector<std::array<int, 2>> segs_;  // the constraints (min, max), sorted: never flipped
+  std::vector<std::array<int, 2>>& segs_;  // the constraints (min, max), sorted: never flipped
   std::vector<FaceCrossing>& crossings_;
 };
 
@@ -132,12 +164,14 @@ bool FaceTriangulator::between(int p, int a, int b) const {
   return false;
 }
 
-std::vector<std::array<int, 2>> FaceTriangulator::split_at_points(const std::vector<std::array<int, 2>>& segs) const {
-  std::vector<std::array<int, 2>> out;
+void FaceTriangulator::split_at_points(const std::vector<std::array<int, 2>>& segs,
+                                       std::vector<std::array<int, 2>>& out) const {
+  out.clear();
   const int n = int(ids_.size());
+  std::vector<int>& on = scratch_.on;
   for (const auto& s : segs) {
     const int a = s[0], b = s[1];
-    std::vector<int> on;
+    on.clear();
     for (int p = 0; p < n; ++p)
       if (p != a && p != b && in_box(p, a, b) && orient(a, b, p) == 0 && between(p, a, b)) on.push_back(p);
     int axis = compare(P(a), P(b), pr_.i) != 0 ? pr_.i : pr_.j;
@@ -150,7 +184,6 @@ std::vector<std::array<int, 2>> FaceTriangulator::split_at_points(const std::vec
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
 }
 
 bool FaceTriangulator::crosses(int a, int b, int u, int v) const {
@@ -176,11 +209,7 @@ bool FaceTriangulator::add_crossings(const std::vector<std::array<int, 2>>& segs
       for (int l = 0; l < int(ids_.size()) && existing < 0; ++l)
         if (same_point(P(l), q)) existing = l;
       crossings_.push_back({std::move(q), ids_[a], ids_[b], ids_[c], ids_[d]});
-      if (existing < 0) {
-        const int id = -int(crossings_.size());
-        local_of_[id] = int(ids_.size());
-        ids_.push_back(id);
-      }
+      if (existing < 0) local(-int(crossings_.size()));  // a new id: added
       any = true;
     }
   return any;
@@ -307,9 +336,27 @@ bool opposite_angles_exceed(const QPoint& c, const QPoint& d, const QPoint& u, c
 // Flips unconstrained edges towards Delaunay, measured in 3D (the projection distorts angles).
 void FaceTriangulator::improve() {
   const double pi = 3.14159265358979323846;
+  // A triangle whose edges all kept their shape since it was last found to have none to
+  // flip still has none: the decision reads only the two triangles of an edge. Flips
+  // move the clock; each triangle keeps when it last changed and when it was last cleared.
+  std::vector<long>& changed_at = scratch_.changed_at;
+  std::vector<long>& cleared_at = scratch_.cleared_at;
+  changed_at.assign(tri_.size(), 0);
+  cleared_at.assign(tri_.size(), -1);
+  long clock = 0;
+  auto still_clear = [&](int t) {
+    if (cleared_at[size_t(t)] < changed_at[size_t(t)]) return false;
+    for (int z = 0; z < 3; ++z) {
+      const int t2 = edge_.get(tri_[t][(z + 1) % 3], tri_[t][z]);
+      if (t2 >= 0 && changed_at[size_t(t2)] > cleared_at[size_t(t)]) return false;
+    }
+    return true;
+  };
   for (int pass = 0; pass < 50; ++pass) {
     int flips = 0;
     for (int t1 = 0; t1 < int(tri_.size()); ++t1) {
+      if (still_clear(t1)) continue;
+      bool flipped = false;
       for (int z = 0; z < 3; ++z) {
         const int u = tri_[t1][z], v = tri_[t1][(z + 1) % 3];
         if (std::binary_search(segs_.begin(), segs_.end(), std::array<int, 2>{std::min(u, v), std::max(u, v)}))
@@ -323,24 +370,21 @@ void FaceTriangulator::improve() {
         clear_tri(t2);
         set_tri(t1, u, d, c);
         set_tri(t2, d, v, c);
+        changed_at[size_t(t1)] = changed_at[size_t(t2)] = ++clock;
         ++flips;
+        flipped = true;
         break;
       }
+      if (!flipped) cleared_at[size_t(t1)] = clock;
     }
     if (flips == 0) break;
   }
 }
 
 void FaceTriangulator::run(const FaceConstraints& c, std::vector<std::array<int, 3>>& out) {
-  for (int z = 0; z < 3; ++z) local_of_[ids_[z]] = z;
-  auto local = [&](int id) {
-    auto it = local_of_.find(id);
-    if (it != local_of_.end()) return it->second;
-    local_of_[id] = int(ids_.size());
-    ids_.push_back(id);
-    return int(ids_.size()) - 1;
-  };
-  std::vector<std::array<int, 2>> segs;
+  std::vector<std::array<int, 2>>& segs = scratch_.segs;
+  std::vector<std::array<int, 2>>& split = scratch_.split;
+  segs.clear();
   for (int p : c.points) local(p);
   for (const auto& s : c.segments) {
     const int a = local(s[0]), b = local(s[1]);
@@ -348,8 +392,12 @@ void FaceTriangulator::run(const FaceConstraints& c, std::vector<std::array<int,
   }
   std::sort(segs.begin(), segs.end());
   segs.erase(std::unique(segs.begin(), segs.end()), segs.end());
-  segs = split_at_points(segs);
-  if (add_crossings(segs)) segs = split_at_points(segs);
+  split_at_points(segs, split);
+  segs.swap(split);
+  if (add_crossings(segs)) {
+    split_at_points(segs, split);
+    segs.swap(split);
+  }
 
   tri_.clear();
   edge_.reset(int(ids_.size()));
@@ -357,7 +405,7 @@ void FaceTriangulator::run(const FaceConstraints& c, std::vector<std::array<int,
   set_tri(0, 0, 1, 2);
   for (int p = 3; p < int(ids_.size()); ++p) insert_point(p);
   for (const auto& s : segs) recover(s[0], s[1]);
-  segs_ = std::move(segs);  // sorted and unique (split_at_points)
+  segs_.swap(segs);  // sorted and unique (split_at_points)
   improve();
   for (const auto& v : tri_) out.push_back({ids_[v[0]], ids_[v[1]], ids_[v[2]]});
 }
@@ -368,8 +416,8 @@ void triangulate_face(const PointTable& points, const std::array<int, 3>& corner
                       FaceTriangles& out) {
   out.triangles.clear();
   out.crossings.clear();
-  thread_local EdgeTable edges;  // its buffer is reused by every face of the thread
-  FaceTriangulator(points, corners, edges, out.crossings).run(c, out.triangles);
+  thread_local TriangulatorScratch scratch;
+  FaceTriangulator(points, corners, scratch, out.crossings).run(c, out.triangles);
 }
 
 void commit_face(PointTable& points, FaceTriangles& face, std::vector<std::array<int, 3>>& out) {

@@ -303,6 +303,53 @@ TEST(UnionTriangulation, CrossingSegmentsSplitAndTileTheFace) {
   EXPECT_EQ(out.size(), 11u);
 }
 
+TEST(UnionTriangulation, AGridOfSegmentsTilesTheFaceAndTheNextFaceIsUnaffected) {
+  // Six horizontal and six vertical segments: 24 ends and 36 crossings, more points
+  // than the triangulator scans for, so it looks them up in its map.
+  PointTable t;
+  const int c0 = t.insert(make_point({0, 0, 0})), c1 = t.insert(make_point({4, 0, 0})), c2 = t.insert(make_point({0, 4, 0}));
+  FaceConstraints fc;
+  for (int k = 0; k < 6; ++k) {
+    const double y = 0.3 + 0.25 * k, x = 0.35 + 0.25 * k;
+    fc.segments.push_back({t.insert(make_point({0.1, y, 0})), t.insert(make_point({2.0, y, 0}))});
+    fc.segments.push_back({t.insert(make_point({x, 0.1, 0})), t.insert(make_point({x, 2.0, 0}))});
+  }
+  auto tile = [&](const std::array<int, 3>& corners, const FaceConstraints& c, double expected_area) {
+    std::vector<std::array<int, 3>> out;
+    triangulate_face(t, corners, c, out);
+    double area = 0;
+    for (const auto& f : out) {
+      const auto &a = t[f[0]].d, &b = t[f[1]].d, &q = t[f[2]].d;
+      const double twice = (b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0]);
+      EXPECT_GT(twice, 0);
+      area += twice / 2;
+    }
+    EXPECT_NEAR(area, expected_area, 1e-12);
+    return out;
+  };
+  const auto grid = tile({c0, c1, c2}, fc, 8.0);
+  EXPECT_EQ(t.size(), 3 + 24 + 36);
+  EXPECT_EQ(grid.size(), size_t(2 * 63 - 3 - 2));  // points 63, 3 on the hull
+  // Every piece of every segment is an edge: each crossing has four neighbours on the grid.
+  auto has_edge = [&](const std::vector<std::array<int, 3>>& tris, int a, int b) {
+    for (const auto& f : tris)
+      for (int z = 0; z < 3; ++z)
+        if ((f[z] == a && f[(z + 1) % 3] == b) || (f[z] == b && f[(z + 1) % 3] == a)) return true;
+    return false;
+  };
+  const int corner = t.insert(make_point({0.35, 0.3, 0})), right = t.insert(make_point({0.6, 0.3, 0}));
+  const int up = t.insert(make_point({0.35, 0.55, 0}));
+  EXPECT_EQ(t.size(), 63);  // all three are grid crossings already
+  EXPECT_TRUE(has_edge(grid, corner, right));
+  EXPECT_TRUE(has_edge(grid, corner, up));
+  // The same face again gives the same triangles; then a small face, with the buffers
+  // the large one left, is tiled on its own.
+  EXPECT_EQ(tile({c0, c1, c2}, fc, 8.0), grid);
+  const int d0 = t.insert(make_point({10, 0, 1})), d1 = t.insert(make_point({11, 0, 1}));
+  const int d2 = t.insert(make_point({10, 1, 1}));
+  EXPECT_EQ(tile({d0, d1, d2}, FaceConstraints{}, 0.5).size(), 1u);
+}
+
 TEST(UnionTriangulation, CrossingsWaitForTheCommitAndGetTheTablesIndex) {
   // Triangulating only reads the table (faces run in parallel); the crossing is a
   // placeholder until commit_face files it, under the index an equal point already has.
