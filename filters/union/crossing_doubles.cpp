@@ -96,7 +96,7 @@ struct Int {
 /// The values as integers z times 2^e, the rationals' scaling (each nonzero double is
 /// m 2^(ilogb - 52) with |m| < 2^53), read from the bits; returns how many binades the
 /// exponents span (-1 for a subnormal). Fills z only when they span at most `widest`.
-int scale_to_integers(const double* v, int n, int widest, i128* z, int& e) {
+int scale_to_stack_integers(const double* v, int n, int widest, i128* z, int& e) {
   int exponent[15];
   int64_t mantissa[15];
   int emin = INT_MAX, emax = INT_MIN;
@@ -139,6 +139,7 @@ Denominator denominator(const Int<L>& den) {
 /// num 2^e / den truncated towards zero, where the leading bits decide it.
 template <int L>
 bool truncated_quotient(const Int<L>& num, const Denominator& den, int e, double& out) {
+  if (den.top == 0) return false;  // a and b not strictly apart: left to the rationals' checks
   if (num.is_zero()) {
     out = 0;
     return true;
@@ -221,7 +222,7 @@ bool truncated_crossing_on_stack(const QPoint::Recipe& recipe, std::array<double
   const int n = recipe.kind == QPoint::Recipe::kEdgePlane ? 15 : 10;
   // Inputs under 2^62 (span 9): differences under 2^63, the parts under 2^255. Under
   // 2^126 (span 73): differences under 2^127, the parts under 2^511.
-  const int span = scale_to_integers(recipe.v, n, 73, z, e);
+  const int span = scale_to_stack_integers(recipe.v, n, 73, z, e);
   if (span < 0 || span > 73) return false;
   if (span <= 9) return crossing_doubles<4, true>(recipe, z, e, d);
   return crossing_doubles<8, false>(recipe, z, e, d);

@@ -159,9 +159,10 @@ int orient2d_filter(const QPoint& a, const QPoint& b, const QPoint& c, int i, in
 mpq_class orient2d_exact(const QPoint& a, const QPoint& b, const QPoint& c, int i, int j);
 
 /// The point where segment (a, b) crosses the plane of (f0, f1, f2), exactly; a and b
-/// must lie strictly on opposite sides. Computed with integers (all inputs scaled to
-/// one power of two), so only the final coordinates are reduced; an edge along an axis
-/// crossing a plane across it gives a point of doubles (exact_double), no integers.
+/// must lie strictly on opposite sides. Its doubles are computed with integers (all
+/// inputs scaled to one power of two, crossing_doubles.h); its rationals, unreduced, only
+/// when first needed. An edge along an axis crossing a plane across it gives a point of
+/// doubles (exact_double), no integers.
 QPoint edge_plane_crossing(const double* a, const double* b, const double* f0, const double* f1, const double* f2);
 
 /// The point where segment (a, b) crosses the line (c0, c1) in the projection on axes
