@@ -281,6 +281,18 @@ TEST(UnionExact, PointsBuiltOnALineAreKnownCollinear) {
   EXPECT_FALSE(t.known_collinear(u, p, off));
 }
 
+/// The triangles' area in the xy-plane, each checked to turn counter-clockwise there.
+double counter_clockwise_area(const PointTable& t, const std::vector<std::array<int, 3>>& triangles) {
+  double area = 0;
+  for (const auto& f : triangles) {
+    const auto &a = t[f[0]].d, &b = t[f[1]].d, &c = t[f[2]].d;
+    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    EXPECT_GT(twice, 0);
+    area += twice / 2;
+  }
+  return area;
+}
+
 TEST(UnionTriangulation, CrossingSegmentsSplitAndTileTheFace) {
   PointTable t;
   const int c0 = t.insert(make_point({0, 0, 0})), c1 = t.insert(make_point({4, 0, 0})), c2 = t.insert(make_point({0, 4, 0}));
@@ -291,14 +303,7 @@ TEST(UnionTriangulation, CrossingSegmentsSplitAndTileTheFace) {
   std::vector<std::array<int, 3>> out;
   triangulate_face(t, {c0, c1, c2}, fc, out);
   EXPECT_EQ(t.size(), 8);  // the crossing (1, 1) was added
-  double area = 0;
-  for (const auto& f : out) {
-    const auto &a = t[f[0]].d, &b = t[f[1]].d, &c = t[f[2]].d;
-    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    EXPECT_GT(twice, 0);
-    area += twice / 2;
-  }
-  EXPECT_DOUBLE_EQ(area, 8.0);
+  EXPECT_DOUBLE_EQ(counter_clockwise_area(t, out), 8.0);
   // 8 points, 3 on the hull: 2*8 - 3 - 2 = 11 triangles.
   EXPECT_EQ(out.size(), 11u);
 }
@@ -317,14 +322,7 @@ TEST(UnionTriangulation, AGridOfSegmentsTilesTheFaceAndTheNextFaceIsUnaffected) 
   auto tile = [&](const std::array<int, 3>& corners, const FaceConstraints& c, double expected_area) {
     std::vector<std::array<int, 3>> out;
     triangulate_face(t, corners, c, out);
-    double area = 0;
-    for (const auto& f : out) {
-      const auto &a = t[f[0]].d, &b = t[f[1]].d, &q = t[f[2]].d;
-      const double twice = (b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0]);
-      EXPECT_GT(twice, 0);
-      area += twice / 2;
-    }
-    EXPECT_NEAR(area, expected_area, 1e-12);
+    EXPECT_NEAR(counter_clockwise_area(t, out), expected_area, 1e-12);
     return out;
   };
   const auto grid = tile({c0, c1, c2}, fc, 8.0);
