@@ -24,15 +24,16 @@ int PairIntersector::edge_plane_point(int a, int b, int face) {
   return id;
 }
 
-void PairIntersector::plane_section(int f, const int sign[3], int other, std::vector<int>& out) {
+void PairIntersector::plane_section(int f, const int sign[3], int other, Section& out) {
   const auto& F = soup_.face[f];
+  out.n = 0;
   for (int i = 0; i < 3; ++i) {
-    if (sign[i] == 0) out.push_back(vertex_point_[F[i]]);
+    if (sign[i] == 0) out.id[out.n++] = vertex_point_[F[i]];
     const int j = (i + 1) % 3;
-    if (sign[i] * sign[j] < 0) out.push_back(edge_plane_point(F[i], F[j], other));
+    if (sign[i] * sign[j] < 0) out.id[out.n++] = edge_plane_point(F[i], F[j], other);
   }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  std::sort(out.id, out.id + out.n);
+  out.n = int(std::unique(out.id, out.id + out.n) - out.id);
 }
 
 namespace {
@@ -195,23 +196,23 @@ bool PairIntersector::intersect(const std::pair<int, int>& pair, const Candidate
 
 // Both faces cross the other's plane (signs sx, st) and their sections may overlap.
 bool PairIntersector::intersect_crossing(int f, int g, const int sx[3], const int st[3], CutFaces& cf) {
-  std::vector<int> a, b;
+  Section a, b;  // on the stack: two heap vectors per pair were a quarter of this loop
   plane_section(f, st, g, a);
   plane_section(g, sx, f, b);
-  if (a.empty() || b.empty()) return false;  // cannot happen with exact signs
+  if (a.n == 0 || b.n == 0) return false;  // cannot happen with exact signs
   int axis = -1;
-  if (a.size() > 1) axis = spread_axis(points_[a[0]], points_[a[1]]);
-  else if (b.size() > 1) axis = spread_axis(points_[b[0]], points_[b[1]]);
+  if (a.n > 1) axis = spread_axis(points_[a.id[0]], points_[a.id[1]]);
+  else if (b.n > 1) axis = spread_axis(points_[b.id[0]], points_[b.id[1]]);
   if (axis < 0) {  // two single points
-    if (a[0] != b[0]) return false;
-    cf[f].points.push_back(a[0]);
-    cf[g].points.push_back(a[0]);
+    if (a.id[0] != b.id[0]) return false;
+    cf[f].points.push_back(a.id[0]);
+    cf[g].points.push_back(a.id[0]);
     return true;
   }
   auto less = [&](int p, int q) { return compare(points_[p], points_[q], axis) < 0; };
-  if (a.size() > 1 && less(a[1], a[0])) std::swap(a[0], a[1]);
-  if (b.size() > 1 && less(b[1], b[0])) std::swap(b[0], b[1]);
-  const int a_lo = a.front(), a_hi = a.back(), b_lo = b.front(), b_hi = b.back();
+  if (a.n > 1 && less(a.id[1], a.id[0])) std::swap(a.id[0], a.id[1]);
+  if (b.n > 1 && less(b.id[1], b.id[0])) std::swap(b.id[0], b.id[1]);
+  const int a_lo = a.id[0], a_hi = a.id[a.n - 1], b_lo = b.id[0], b_hi = b.id[b.n - 1];
   const int lo = less(a_lo, b_lo) ? b_lo : a_lo;
   const int hi = less(a_hi, b_hi) ? a_hi : b_hi;
   const int c = compare(points_[lo], points_[hi], axis);

@@ -42,7 +42,13 @@ public:
 
 private:
   int edge_plane_point(int a, int b, int face);
-  void plane_section(int f, const int sign[3], int other, std::vector<int>& out);
+  /// Where face f meets the plane of face `other` (its corners' sides `sign`): its
+  /// corners on the plane and its sides' crossings, sorted and distinct (at most two).
+  struct Section {
+    int id[6];
+    int n = 0;
+  };
+  void plane_section(int f, const int sign[3], int other, Section& out);
   bool coplanar(int f, int g, CutFaces& cf);
   bool sections_surely_apart(int f, const int* st, int g, const int* sx) const;
   const double* vp(int v) const { return soup_.vertex[v].data(); }
