@@ -34,7 +34,8 @@ public:
   }
 
   /// Runs `task` on another thread, or here when one thread is all there is; on that
-  /// thread `then` follows (lending it, see SideWorker). Call once.
+  /// other thread `then` follows (lending it, see SideWorker), and without one `then`
+  /// does not run. Call once.
   void run(std::function<void()> task, std::function<void()> then = {}) {
     if (worker_count() > 1) {
       try {

@@ -303,9 +303,11 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
     release.run(std::move(free_temporaries), [helper] { helper->serve(); });
   // 5. Slivers.
   t = Clock::now();
+  // (On one thread nobody serves: the step then checks each move in its plain order.)
+  SideWorker* lent = worker_count() > 1 ? helper.get() : nullptr;
   if (params.sliver_angle_deg > 0)
     r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,
-                                           params.sliver_max_volume_change, helper.get());
+                                           params.sliver_max_volume_change, lent);
   r.time_slivers_ms = ms_since(t);
   for (const auto& l : r.line_edge) r.intersection_edges += int(l[0]) + int(l[1]) + int(l[2]);
   r.intersection_edges /= 2;
