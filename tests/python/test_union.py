@@ -726,3 +726,37 @@ def test_sliver_step_keeps_the_surface_near_the_exact_union(name, bound):
     assert one_way_hausdorff(ms, improved, exact, 200000) <= bound * diag
     assert one_way_hausdorff(ms, exact, improved, 200000) <= bound * diag
 
+
+
+def _turned_half_a_turn(ms):
+    """A copy of the current mesh turned by a floating-point half turn about the x axis
+    through its centroid: a symmetric part then nearly coincides with its copy."""
+    v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
+    c = v.mean(0)
+    turn = np.array([[1, 0, 0], [0, np.cos(np.pi), -np.sin(np.pi)], [0, np.sin(np.pi), np.cos(np.pi)]])
+    ms.add_mesh(pymeshlab.Mesh((v - c) @ turn.T + c, f))
+
+
+@pytest.mark.parametrize("sliver_angle", [0.0, 10.0])
+def test_bug_crossings_rounded_to_one_place_left_faces_with_coincident_corners(sliver_angle):
+    # cad/part.off is symmetric about that axis: the copy lies within units in the last
+    # place of the original, and crossings of the two sheets closer than that rounded to
+    # one double. The edge between them had no length and its two faces no area (the
+    # output's smallest angle was 0 and the exact check found them crossing their
+    # neighbours); such edges are now merged (rounded_edges.h).
+    ms = load("cad/part.off")
+    _turned_half_a_turn(ms)
+    ref = reference([ms.mesh(0), ms.mesh(1)])
+    r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle)
+    assert r["zero_length_edges_merged"] > 0
+    m = ms.current_mesh()
+    v, f = m.vertex_matrix(), m.face_matrix()
+    for z in range(3):
+        assert not np.all(v[f[:, z]] == v[f[:, (z + 1) % 3]], axis=1).any()
+    if sliver_angle > 0:
+        assert check_union(ms, 2) == pytest.approx(ref, rel=IMPROVED_VOLUME_RTOL)
+        assert angles(m).min() > 0.5
+    else:
+        topo = ms.get_topological_measures()
+        assert topo["boundary_edges"] == 0 and topo["non_two_manifold_edges"] == 0
+        assert ms.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
