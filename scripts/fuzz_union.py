@@ -13,7 +13,9 @@ itself), among good blobs cut by it: the union must refuse it by name, whatever 
 with it meanwhile (the self-intersection check runs beside the sliver step), and not crash.
 Each is united with the sliver step off and on and must give no error, a closed two-manifold
 surface and manifold3d's volume (cavities filled): 1e-9 relative without the sliver step, its
-volume budget (1e-6) with it. Where only the volume differs, MeshLab's union (libigl on CGAL's
+volume budget (1e-6) with it. With the sliver step (the default) the result must also have no
+face with two corners at one place and no face that MeshLab's self-intersection selection
+flags and exact rationals confirm (meshregrid.quality.exactly_intersecting_faces). Where only the volume differs, MeshLab's union (libigl on CGAL's
 exact kernel) arbitrates: manifold3d perturbs coincident geometry symbolically. Prints the
 failing seeds; not part of the test suite.
 """
@@ -22,6 +24,7 @@ import sys
 import numpy as np
 
 import meshregrid  # noqa: F401
+from meshregrid.quality import exactly_intersecting_faces
 import manifold3d
 import pymeshlab
 
@@ -159,6 +162,18 @@ def check_refused(first, last):
     return 1 if bad else 0
 
 
+def crossing_faults(ms):
+    """Faces with two corners at one place, and faces that really cross another."""
+    m = ms.current_mesh()
+    v, f = m.vertex_matrix(), m.face_matrix()
+    coincident = sum(int(np.all(v[f[:, z]] == v[f[:, (z + 1) % 3]], axis=1).sum()) for z in range(3))
+    fresh = pymeshlab.MeshSet()
+    fresh.add_mesh(pymeshlab.Mesh(v, f))
+    fresh.compute_selection_by_self_intersections_per_face()
+    flagged = np.nonzero(fresh.current_mesh().face_selection_array())[0]
+    return coincident, len(exactly_intersecting_faces(v, f, flagged))
+
+
 def main():
     first, last = int(sys.argv[1]), int(sys.argv[2])
     if "--selfcrossing" in sys.argv[3:]:
@@ -198,6 +213,12 @@ def main():
                 print(f"seed {seed} kind {kind} sliver {sliver}: boundary {topo['boundary_edges']} "
                       f"manifold {topo['is_mesh_two_manifold']} volume error {err:.2e}")
                 bad += 1
+            elif sliver > 0:
+                coincident, crossing = crossing_faults(ms)
+                if coincident or crossing:
+                    print(f"seed {seed} kind {kind} sliver {sliver}: {coincident} faces with coincident "
+                          f"corners, {crossing} crossing faces")
+                    bad += 1
     print(f"{last - first} seeds, {bad} failures, {disagreements} where only manifold3d differs")
     return 1 if bad else 0
 

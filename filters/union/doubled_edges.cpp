@@ -22,7 +22,7 @@ void split_copy(Result& r, std::vector<char>& cut, std::vector<int>& partner, in
     const std::array<int, 3> t = r.faces[size_t(face)];
     const std::array<bool, 3> line = r.line_edge[size_t(face)];
     const int s1 = (side + 1) % 3, s2 = (side + 2) % 3;
-    const int from = t[size_t(side)], to = t[size_t(s1)], third = t[size_t(s2)];
+    const int to = t[size_t(s1)], third = t[size_t(s2)];
     const int across_to_third = partner[size_t(3 * face + s1)];  // side (to -> third)
     r.faces[size_t(face)][size_t(s1)] = m;                      // (from, m, third)
     r.line_edge[size_t(face)] = {};

@@ -1,19 +1,31 @@
 #include "union/rounded_edges.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <tuple>
+
+#include "common/union_find.h"
+#include "union/exact.h"
+#include "union/face_clearance.h"
+#include "union/vec3.h"
 
 namespace mr::surface_union {
 
 namespace {
 
-class EdgeMerger {
+class ClusterMerger {
 public:
-  EdgeMerger(Result& r, std::vector<char>& cut) : r_(r), cut_(cut) {}
+  ClusterMerger(Result& r, std::vector<char>& cut) : r_(r), cut_(cut) {}
 
   int run() {
-    // A zero-length edge has a crossing at one end at least, so its faces are cut faces.
-    // Most unions have none: the stars are built only then.
-    if (!any_zero_length_edge()) return 0;
+    double largest = 0;
+    for (const auto& p : r_.vertices)
+      for (double x : p) largest = std::max(largest, std::fabs(x));
+    tiny_ = 4 * (std::nextafter(largest, std::numeric_limits<double>::infinity()) - largest);
+    // Most unions have no such edge: the stars are built only then.
+    if (!(tiny_ > 0) || close_edges().empty()) return 0;
     alive_.assign(r_.faces.size(), 1);
     vf_.assign(r_.vertices.size(), {});
     for (int f = 0; f < int(r_.faces.size()); ++f)
@@ -21,13 +33,20 @@ public:
     int merged = 0;
     for (bool again = true; again;) {
       again = false;
-      for (int f = 0; f < int(r_.faces.size()); ++f)
-        for (int z = 0; z < 3 && alive_[size_t(f)] && cut_[size_t(f)]; ++z) {
-          const int u = r_.faces[size_t(f)][size_t(z)], w = r_.faces[size_t(f)][size_t((z + 1) % 3)];
-          if (u != w && r_.vertices[size_t(u)] == r_.vertices[size_t(w)] && merge(std::min(u, w), std::max(u, w))) {
-            ++merged;
-            again = true;
-          }
+      // Whole clusters (ends joined by close edges) first: three crossings within a few
+      // units make a tiny face whose edges no single merge can take (each leaves a face
+      // with two corners at one place). Where a cluster cannot go as a whole, its edges
+      // one by one, shortest first.
+      const auto edges = close_edges();
+      for (const auto& members : clusters(edges))
+        if (members.size() > 2 && collapse(members)) {
+          merged += int(members.size()) - 1;
+          again = true;
+        }
+      for (const auto& [length, u, w] : close_edges())
+        if (edge_exists(u, w) && collapse({u, w})) {
+          ++merged;
+          again = true;
         }
     }
     if (merged > 0) compact();
@@ -35,101 +54,223 @@ public:
   }
 
 private:
-  bool any_zero_length_edge() const {
+  const V3& at(int v) const { return r_.vertices[size_t(v)]; }
+  /// Ends within tiny_ of each other in every coordinate.
+  bool close(int u, int w) const {
+    const V3 &a = at(u), &b = at(w);
+    return std::fabs(a[0] - b[0]) <= tiny_ && std::fabs(a[1] - b[1]) <= tiny_ && std::fabs(a[2] - b[2]) <= tiny_;
+  }
+  /// Edges of live cut faces whose ends are close: (length, lower end, higher end), sorted.
+  /// (One end at least is a crossing, so the edge's faces are cut faces.)
+  std::vector<std::tuple<double, int, int>> close_edges() const {
+    std::vector<std::tuple<double, int, int>> out;
     for (size_t f = 0; f < r_.faces.size(); ++f)
-      if (cut_[f])
-        for (int z = 0; z < 3; ++z)
-          if (r_.vertices[size_t(r_.faces[f][size_t(z)])] == r_.vertices[size_t(r_.faces[f][size_t((z + 1) % 3)])])
-            return true;
-    return false;
+      if (cut_[f] && (alive_.empty() || alive_[f]))
+        for (int z = 0; z < 3; ++z) {
+          const int u = r_.faces[f][size_t(z)], w = r_.faces[f][size_t((z + 1) % 3)];
+          if (close(u, w)) out.emplace_back(norm(sub3(at(u), at(w))), std::min(u, w), std::max(u, w));
+        }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  /// Vertices joined by close edges, each cluster sorted, in the order of its lowest id.
+  std::vector<std::vector<int>> clusters(const std::vector<std::tuple<double, int, int>>& edges) const {
+    std::vector<int> ends;
+    for (const auto& [length, u, w] : edges) { ends.push_back(u); ends.push_back(w); }
+    std::sort(ends.begin(), ends.end());
+    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+    auto index = [&](int v) { return int(std::lower_bound(ends.begin(), ends.end(), v) - ends.begin()); };
+    UnionFind uf(int(ends.size()));
+    for (const auto& [length, u, w] : edges) uf.unite(index(u), index(w));
+    std::vector<std::vector<int>> by_root(ends.size());
+    for (size_t i = 0; i < ends.size(); ++i) by_root[size_t(uf.find(int(i)))].push_back(ends[i]);
+    std::vector<std::vector<int>> out;
+    for (auto& c : by_root)
+      if (!c.empty()) out.push_back(std::move(c));
+    std::sort(out.begin(), out.end());
+    return out;
   }
   bool has(int f, int v) const {
     const auto& t = r_.faces[size_t(f)];
     return t[0] == v || t[1] == v || t[2] == v;
   }
-  void live(int v, std::vector<int>& out) const {
-    out.clear();
-    for (int f : vf_[size_t(v)])
-      if (alive_[size_t(f)]) out.push_back(f);
-  }
-  /// The side of face f from a to b (either way round), or -1.
-  int side(int f, int a, int b) const {
-    const auto& t = r_.faces[size_t(f)];
-    for (int z = 0; z < 3; ++z) {
-      const int x = t[size_t(z)], y = t[size_t((z + 1) % 3)];
-      if ((x == a && y == b) || (x == b && y == a)) return z;
-    }
-    return -1;
-  }
-  /// The live face other than `not_f` with side (a, b), or -1.
-  int across(int a, int b, int not_f) const {
-    for (int g : vf_[size_t(a)])
-      if (alive_[size_t(g)] && g != not_f && has(g, b)) return g;
-    return -1;
+  bool edge_exists(int u, int w) const {
+    for (int f : vf_[size_t(u)])
+      if (alive_[size_t(f)] && has(f, w)) return true;
+    return false;
   }
 
-  bool merge(int keep, int gone) {
-    live(keep, fk_);
-    live(gone, fg_);
-    both_.clear();
-    for (int f : fg_)
-      if (has(f, keep)) both_.push_back(f);
-    if (both_.size() != 2) return false;
-    // Link condition: the ends' rings share only the two corners opposite the edge.
-    ring_.clear();
-    for (int f : fk_)
-      for (int x : r_.faces[size_t(f)])
-        if (x != keep && x != gone) ring_.push_back(x);
-    std::sort(ring_.begin(), ring_.end());
-    ring_.erase(std::unique(ring_.begin(), ring_.end()), ring_.end());
-    common_.clear();
-    for (int f : fg_)
-      for (int x : r_.faces[size_t(f)])
-        if (x != keep && x != gone && std::binary_search(ring_.begin(), ring_.end(), x)) common_.push_back(x);
-    std::sort(common_.begin(), common_.end());
-    common_.erase(std::unique(common_.begin(), common_.end()), common_.end());
-    if (common_.size() != 2) return false;
-    // Where a dying face (keep, gone, x) leaves, the faces across its sides (gone, x)
-    // and (x, keep) become neighbours along (keep, x): one line edge if either was.
-    struct Join {
-      int g1, z1, g2, z2;
+  /// Merges `members` (sorted) into one of them, the first for which the result is a
+  /// closed manifold around it and the moved faces are clear (moved_faces_clear).
+  bool collapse(const std::vector<int>& members) {
+    auto member = [&](int v) { return std::binary_search(members.begin(), members.end(), v); };
+    around_.clear();
+    for (int m : members)
+      for (int f : vf_[size_t(m)])
+        if (alive_[size_t(f)]) around_.push_back(f);
+    std::sort(around_.begin(), around_.end());
+    around_.erase(std::unique(around_.begin(), around_.end()), around_.end());
+    dying_.clear();
+    kept_.clear();
+    for (int f : around_) {
+      int n = 0;
+      for (int v : r_.faces[size_t(f)]) n += member(v);
+      (n >= 2 ? dying_ : kept_).push_back(f);
+    }
+    if (!manifold_after(member)) return false;
+    // A side (m, x) of any face here is the side (rep, x) afterwards: a line edge if any was.
+    std::vector<std::pair<int, bool>> line_at;  // (x, flag)
+    for (int f : around_)
+      for (int z = 0; z < 3; ++z) {
+        const int a = r_.faces[size_t(f)][size_t(z)], b = r_.faces[size_t(f)][size_t((z + 1) % 3)];
+        if (member(a) != member(b)) line_at.push_back({member(a) ? b : a, r_.line_edge[size_t(f)][size_t(z)]});
+      }
+    std::sort(line_at.begin(), line_at.end());
+    auto line_to = [&](int x) {
+      const auto it = std::lower_bound(line_at.begin(), line_at.end(), std::make_pair(x, true));
+      return it != line_at.end() && it->first == x;
     };
-    Join joins[2];
-    for (int k = 0; k < 2; ++k) {
-      const int d = both_[size_t(k)];
-      int x = -1;
-      for (int y : r_.faces[size_t(d)])
-        if (y != keep && y != gone) x = y;
-      const int g1 = across(gone, x, d), g2 = across(keep, x, d);
-      if (g1 < 0 || g2 < 0) return false;  // an open side: not the closed surface assumed
-      joins[k] = {g1, side(g1, gone, x), g2, side(g2, keep, x)};
+    old_.clear();
+    for (int f : kept_) old_.push_back(r_.faces[size_t(f)]);
+    // Filed before any face is renamed: a box filed off by a few units could miss a neighbour.
+    if (!grid_ && std::any_of(members.begin(), members.end(), [&](int m) { return at(m) != at(members[0]); }))
+      grid_.emplace(r_.vertices, r_.faces);
+    for (int rep : members) {
+      for (int f : dying_) alive_[size_t(f)] = 0;
+      for (int f : kept_)
+        for (int& v : r_.faces[size_t(f)])
+          if (member(v)) v = rep;
+      saved_star_ = vf_[size_t(rep)];
+      vf_[size_t(rep)] = kept_;  // what the fold test walks
+      const bool clear = moved_faces_clear(rep);
+      vf_[size_t(rep)] = saved_star_;
+      if (clear) {
+        for (int m : members) vf_[size_t(m)].clear();
+        vf_[size_t(rep)] = kept_;
+        if (grid_) {
+          for (int f : kept_) grid_->add(f);
+          for (int f : dying_) grid_->remove(f);
+        }
+        for (int f : kept_)
+          for (int z = 0; z < 3; ++z) {
+            const auto& t = r_.faces[size_t(f)];
+            const int a = t[size_t(z)], b = t[size_t((z + 1) % 3)];
+            if (a == rep || b == rep) r_.line_edge[size_t(f)][size_t(z)] = line_to(a == rep ? b : a);
+          }
+        return true;
+      }
+      for (size_t i = 0; i < kept_.size(); ++i) r_.faces[size_t(kept_[i])] = old_[i];
+      for (int f : dying_) alive_[size_t(f)] = 1;
     }
-    for (int d : both_) alive_[size_t(d)] = 0;
-    for (int f : fg_) {
-      if (!alive_[size_t(f)]) continue;
-      for (int& x : r_.faces[size_t(f)])
-        if (x == gone) x = keep;
-      vf_[size_t(keep)].push_back(f);
+    return false;
+  }
+
+  /// With the members one vertex c, the kept faces around it (each with one member corner)
+  /// leave a closed manifold: every edge (c, x) has one face each way, and the sides
+  /// opposite c form one cycle of at least three (c's link is a single loop). Faces away
+  /// from c keep their edges: a dying face has at most one corner that is not a member.
+  template <class Member>
+  bool manifold_after(Member member) const {
+    std::vector<std::pair<int, int>> link, outgoing, incoming;  // a -> b opposite c; c -> x; x -> c
+    for (int f : kept_) {
+      const auto& t = r_.faces[size_t(f)];
+      int z = 0;
+      while (!member(t[size_t(z)])) ++z;
+      const int a = t[size_t((z + 1) % 3)], b = t[size_t((z + 2) % 3)];
+      link.push_back({a, b});
+      outgoing.push_back({a, 0});
+      incoming.push_back({b, 0});
     }
-    vf_[size_t(gone)].clear();
-    for (const Join& j : joins) {
-      bool& a = r_.line_edge[size_t(j.g1)][size_t(j.z1)];
-      bool& b = r_.line_edge[size_t(j.g2)][size_t(j.z2)];
-      a = b = a || b;
+    if (link.size() < 3) return false;
+    std::sort(outgoing.begin(), outgoing.end());
+    std::sort(incoming.begin(), incoming.end());
+    if (outgoing != incoming || std::adjacent_find(outgoing.begin(), outgoing.end()) != outgoing.end()) return false;
+    std::sort(link.begin(), link.end());
+    // One loop: from the first corner, each next by its one outgoing side, back after all.
+    int x = link[0].first;
+    for (size_t n = 0; n < link.size(); ++n) {
+      const auto it = std::lower_bound(link.begin(), link.end(), std::make_pair(x, -1));
+      x = it->second;
+      if (x == link[0].first) return n + 1 == link.size();
+    }
+    return false;
+  }
+
+  /// The kept faces, members renamed to `rep` (old_ holds them before), keep their turn in
+  /// the projection across their largest normal component, strictly, so none turns over or
+  /// degenerates; none folds onto a neighbour across a side (coplanar, on the same side of
+  /// it); and none meets another face but along what they share (exact; face_clearance.h).
+  /// Faces whose corners stayed where they were are left out of the first two tests.
+  bool moved_faces_clear(int rep) {
+    moved_.clear();
+    for (size_t i = 0; i < kept_.size(); ++i)
+      for (int v : old_[i])
+        if (at(v) != at(rep) && !has(kept_[i], v)) moved_.push_back(int(i));
+    moved_.erase(std::unique(moved_.begin(), moved_.end()), moved_.end());
+    if (moved_.empty()) return true;  // all members at one place: no face changes shape
+    for (int i : moved_) {
+      const int f = kept_[size_t(i)];
+      const auto& t = r_.faces[size_t(f)];
+      V3 q[3], old_q[3];
+      for (int z = 0; z < 3; ++z) {
+        q[z] = at(t[size_t(z)]);
+        old_q[z] = at(old_[size_t(i)][size_t(z)]);
+      }
+      const int k = largest_normal_axis(old_q), a = (k + 1) % 3, b = (k + 2) % 3;
+      const int before = orient2d(old_q[0].data(), old_q[1].data(), old_q[2].data(), a, b);
+      if (before == 0 || orient2d(q[0].data(), q[1].data(), q[2].data(), a, b) != before) return false;
+      // Folds: across each side (x, y), the neighbour's third corner coplanar with the
+      // face and on the side of xy where the face's own third corner is.
+      for (int z = 0; z < 3; ++z) {
+        const int x = t[size_t(z)], y = t[size_t((z + 1) % 3)], own = t[size_t((z + 2) % 3)];
+        for (int g : vf_[size_t(x)]) {
+          if (!alive_[size_t(g)] || g == f || !has(g, y)) continue;
+          int c = -1;
+          for (int v : r_.faces[size_t(g)])
+            if (v != x && v != y) c = v;
+          if (orient3d(at(x).data(), at(y).data(), at(own).data(), at(c).data()) != 0) continue;
+          if (orient2d(at(x).data(), at(y).data(), at(own).data(), a, b) *
+                  orient2d(at(x).data(), at(y).data(), at(c).data(), a, b) >= 0)
+            return false;
+        }
+      }
+    }
+    // Crossings: every kept face against the faces near it (kept faces are filed at their
+    // old boxes, a few units from the new ones: they are tested among themselves).
+    for (size_t i = 0; i < kept_.size(); ++i) {
+      const int f = kept_[i];
+      const auto& t = r_.faces[size_t(f)];
+      const V3 q[3] = {at(t[0]), at(t[1]), at(t[2])};
+      V3 lo = q[0], hi = q[0];
+      for (int z = 1; z < 3; ++z)
+        for (int m = 0; m < 3; ++m) { lo[m] = std::min(lo[m], q[z][m]); hi[m] = std::max(hi[m], q[z][m]); }
+      grid_->near(lo, hi, near_);
+      for (int g : near_) {
+        if (!alive_[size_t(g)] || std::binary_search(around_.begin(), around_.end(), g)) continue;
+        const auto& u = r_.faces[size_t(g)];
+        const V3 gq[3] = {at(u[0]), at(u[1]), at(u[2])};
+        if (triangles_meet(t, q, u, gq)) return false;
+      }
+      for (size_t j = 0; j < i; ++j) {
+        const auto& u = r_.faces[size_t(kept_[j])];
+        const V3 uq[3] = {at(u[0]), at(u[1]), at(u[2])};
+        if (triangles_meet(t, q, u, uq)) return false;
+      }
     }
     return true;
   }
 
   void compact() {
     std::vector<int> index(r_.vertices.size(), -1);
-    std::vector<std::array<double, 3>> vertices;
+    std::vector<V3> vertices;
     size_t k = 0;
     for (size_t f = 0; f < r_.faces.size(); ++f) {
       if (!alive_[f]) continue;
       for (int& v : r_.faces[f]) {
         if (index[size_t(v)] < 0) {
           index[size_t(v)] = int(vertices.size());
-          vertices.push_back(r_.vertices[size_t(v)]);
+          vertices.push_back(at(v));
         }
         v = index[size_t(v)];
       }
@@ -148,11 +289,14 @@ private:
   std::vector<char>& cut_;
   std::vector<char> alive_;
   std::vector<std::vector<int>> vf_;
-  std::vector<int> fk_, fg_, both_, ring_, common_;
+  std::vector<int> around_, dying_, kept_, moved_, near_, saved_star_;  // scratch of collapse()
+  std::vector<std::array<int, 3>> old_;                    // the kept faces before renaming
+  std::optional<FaceGrid> grid_;                           // built at the first merge that moves faces
+  double tiny_ = 0;                                        // 4 units in the last place of the largest coordinate
 };
 
 }  // namespace
 
-int merge_zero_length_edges(Result& r, std::vector<char>& cut) { return EdgeMerger(r, cut).run(); }
+int merge_rounded_together(Result& r, std::vector<char>& cut) { return ClusterMerger(r, cut).run(); }
 
 }  // namespace mr::surface_union

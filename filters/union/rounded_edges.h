@@ -1,21 +1,24 @@
-// The union is exact until its points are rounded to doubles. Two crossings closer
-// than a unit in the last place (bodies that nearly coincide: a symmetric part and its
-// copy turned by a floating-point half turn) then land on one place, and an edge
-// between them has no length: its two faces degenerate.
+// The union is exact until its points are rounded to doubles. Crossings closer than a
+// unit in the last place (bodies that nearly coincide: a symmetric part and its copy
+// turned by a floating-point half turn) then land on one place, or a few units apart:
+// an edge between them has no length or next to none, and its faces degenerate into
+// needles whose smallest angle is 1e-13 degrees, or no area at all.
 #pragma once
 
 #include "union/surface_union.h"
 
 namespace mr::surface_union {
 
-/// Merges the two ends of every edge whose ends have the same coordinates, where the
-/// link condition holds (the ends share only the corners opposite the edge): the two
-/// faces of the edge go, which have no area and cover nothing their neighbours do not;
-/// no other face changes shape, so nothing can come to cross. Line flags of the two
-/// sides that become one are joined. Faces, `cut` and line flags are compacted, and
-/// vertices no face uses dropped. Only cut faces are looked for such edges (an input
-/// face has distinct corners, so one end at least is a crossing). Returns the number of
-/// edges merged; an edge whose ends fail the link condition is left as it is.
-int merge_zero_length_edges(Result& r, std::vector<char>& cut);
+/// Merges the two ends of edges that rounding left within 4 units in the last place of the
+/// largest coordinate (per coordinate; 0 included), shortest first, where the link
+/// condition holds (the ends share only the corners opposite the edge). The edge's two
+/// faces go. An edge without length changes no other face's shape; otherwise the faces
+/// that move (by those few units) are checked exactly against every face near them first:
+/// none may turn over, degenerate or cross another. Line flags of the two sides that
+/// become one are joined. Faces, `cut` and line flags are compacted, and vertices no face
+/// uses dropped. Only cut faces are looked for such edges (an input face has distinct
+/// corners, so one end at least is a crossing). Returns the number of edges merged; an
+/// edge whose ends fail the checks is left as it is.
+int merge_rounded_together(Result& r, std::vector<char>& cut);
 
 }  // namespace mr::surface_union

@@ -371,7 +371,7 @@ private:
   /// At the step's start: the faces' distances from the cut's surface (0) and the
   /// touching vertices.
   void keep_cut_surface();
-  std::vector<char> touching_;  // per vertex: another vertex sits at its place as the step begins
+  std::vector<char> touching_;  // per vertex: another sheet's vertex sits at its place as the step begins
   /// Where two sheets touch (vertices of both at one point), their faces keep their shape
   /// unless the cover stays the same: tilted even slightly, faces that still only touch
   /// there get flagged by MeshLab's self-intersection test.
@@ -437,7 +437,19 @@ bool Collapser::stays_near(double pointwise) {
 void Collapser::keep_cut_surface() {
   cut_distance_.assign(r_.faces.size(), 0);
   touching_.assign(r_.vertices.size(), 0);
-  for (int x = 0; x < int(r_.vertices.size()); ++x) touching_[x] = vertices_at(P(x)) > 1;
+  for (int x = 0; x < int(r_.vertices.size()); ++x) {
+    int others = vertices_at(P(x)) - 1;
+    if (others == 0) continue;
+    // A neighbour at the same place is the other end of an edge that rounding left without
+    // length (its ends failed the link condition, rounded_edges.h): the same sheet, whose
+    // needles the step must be free to mend, not a touching one.
+    std::vector<int>& ring = scratch_at_v_;
+    ring.clear();
+    for (int f : vf_[x])
+      for (int y : r_.faces[f])
+        if (y != x && P(y) == P(x) && std::find(ring.begin(), ring.end(), y) == ring.end()) ring.push_back(y);
+    touching_[x] = others > int(ring.size());
+  }
 }
 
 /// The faces within two rings of a face the cut made: the only ones moves come near.

@@ -285,7 +285,7 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
       r.doubled_edges_split = split_doubled_edges(r, cut, std::move(partner), doubled);
     }
   }
-  r.zero_length_edges_merged = merge_zero_length_edges(r, cut);
+  r.rounded_edges_merged = merge_rounded_together(r, cut);
   r.time_classify_ms = ms_since(t);
 
   // Nothing above is needed any more. The sliver step runs on this thread; the temporaries

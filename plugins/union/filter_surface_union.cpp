@@ -177,7 +177,7 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
       {"slivers_collapsed", QVariant(r.slivers_collapsed)},
       {"orientation_conflicts", QVariant(r.orientation_conflicts)},
       {"doubled_edges_split", QVariant(r.doubled_edges_split)},
-      {"zero_length_edges_merged", QVariant(r.zero_length_edges_merged)},
+      {"rounded_edges_merged", QVariant(r.rounded_edges_merged)},
       {"vertices", QVariant(int(r.vertices.size()))},
       {"faces", QVariant(int(r.faces.size()))},
       {"min_angle", QVariant(r.min_angle_deg)},

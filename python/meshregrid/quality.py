@@ -1,4 +1,6 @@
 """Triangle quality and distance measures for comparing meshes of one surface."""
+from fractions import Fraction
+
 import numpy as np
 import pymeshlab
 
@@ -59,4 +61,79 @@ def mesh_quality(ms: pymeshlab.MeshSet, mesh_id: int, reference_id: int = None) 
         diag = ms.mesh(reference_id).bounding_box().diagonal()
         d = hausdorff(ms, mesh_id, reference_id, max(10000, 10 * m.face_number()))
         out["hausdorff_pct_diag"] = float(100 * d / diag)
+    return out
+
+
+def _orient(a, b, c, d):
+    u, v, w = [x - y for x, y in zip(b, a)], [x - y for x, y in zip(c, a)], [x - y for x, y in zip(d, a)]
+    det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])
+    return (det > 0) - (det < 0)
+
+
+def _orient2(a, b, c, i, j):
+    det = (b[i] - a[i]) * (c[j] - a[j]) - (b[j] - a[j]) * (c[i] - a[i])
+    return (det > 0) - (det < 0)
+
+
+def _coplanar_segment_meets_triangle(p, q, tri):
+    """Closed segment pq against the closed triangle in its plane, in the projection that
+    drops the normal's largest component (one to one on the plane)."""
+    a, b, c = tri
+    n = [(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+         (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+         (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])]
+    k = max(range(3), key=lambda t: abs(n[t]))
+    i, j = (k + 1) % 3, (k + 2) % 3
+    s = _orient2(a, b, c, i, j)
+    if s == 0:
+        return True  # a degenerate triangle: counted as a hit
+    for x in (p, q):
+        if all(s * _orient2(u, w, x, i, j) >= 0 for u, w in ((a, b), (b, c), (c, a))):
+            return True
+
+    def on(u, w, x):  # x on the closed segment uw, known collinear
+        return all(min(u[m], w[m]) <= x[m] <= max(u[m], w[m]) for m in (i, j))
+
+    for u, w in ((a, b), (b, c), (c, a)):
+        o1, o2 = _orient2(p, q, u, i, j), _orient2(p, q, w, i, j)
+        o3, o4 = _orient2(u, w, p, i, j), _orient2(u, w, q, i, j)
+        if o1 * o2 < 0 and o3 * o4 < 0:
+            return True
+        if (o1 == 0 and on(p, q, u)) or (o2 == 0 and on(p, q, w)) or (o3 == 0 and on(u, w, p)) or \
+           (o4 == 0 and on(u, w, q)):
+            return True
+    return False
+
+
+def _segment_meets_triangle(p, q, tri):
+    a, b, c = tri
+    sp, sq = _orient(a, b, c, p), _orient(a, b, c, q)
+    if sp * sq > 0:
+        return False
+    if sp == 0 and sq == 0:
+        return _coplanar_segment_meets_triangle(p, q, tri)
+    s = [_orient(p, q, a, b), _orient(p, q, b, c), _orient(p, q, c, a)]
+    return all(x >= 0 for x in s) or all(x <= 0 for x in s)
+
+
+def exactly_intersecting_faces(v: np.ndarray, f: np.ndarray, faces) -> list:
+    """Of the given faces, those that meet a face sharing no corner with them, decided with
+    exact rationals (to re-check what MeshLab's floating-point selection flags). Corners at
+    one place count as shared, as where two sheets touch (MeshLab tells corners apart by
+    their vertex only)."""
+    _, place = np.unique(v, axis=0, return_inverse=True)
+    place = place.reshape(-1)
+    lo, hi = v[f].min(1), v[f].max(1)
+    out = []
+    for i in faces:
+        ti = [[Fraction(x) for x in v[k]] for k in f[i]]
+        near = np.nonzero(np.all(lo <= hi[i], 1) & np.all(hi >= lo[i], 1))[0]
+        for j in near:
+            if j == i or set(place[f[i]]) & set(place[f[j]]):
+                continue
+            tj = [[Fraction(x) for x in v[k]] for k in f[j]]
+            if any(_segment_meets_triangle(tj[e], tj[(e + 1) % 3], ti) for e in range(3)) or \
+               any(_segment_meets_triangle(ti[e], ti[(e + 1) % 3], tj) for e in range(3)):
+                out.append(int(i))
+                break
     return out

@@ -1,6 +1,7 @@
 // Edges whose two ends round to one place: merged, so that no output face degenerates.
 #include "shapes.h"
 #include "union/rounded_edges.h"
+#include "union/self_intersection.h"
 #include "union/surface_union.h"
 #include "union_checks.h"
 
@@ -46,7 +47,7 @@ TEST(RoundedEdges, SplitApexMergesBackIntoTheOctahedron) {
   ASSERT_EQ(faces_with_coincident_corners(r), 2);
   const double volume = mr::test::volume(r);
   std::vector<char> cut(r.faces.size(), 1);
-  EXPECT_EQ(merge_zero_length_edges(r, cut), 1);
+  EXPECT_EQ(merge_rounded_together(r, cut), 1);
   EXPECT_EQ(r.faces.size(), 8u);
   EXPECT_EQ(r.vertices.size(), 6u);
   EXPECT_EQ(cut.size(), 8u);
@@ -71,10 +72,34 @@ TEST(RoundedEdges, SplitApexMergesBackIntoTheOctahedron) {
   EXPECT_EQ(others, 0);
 }
 
+// The apex as a tiny face (three vertices a unit in the last place apart, each joined to
+// the others): the three are one cluster and go at once; the faces that move (by a unit)
+// are checked first.
+TEST(RoundedEdges, ATinyFaceOfThreeCloseCornersGoesAsAWhole) {
+  const double u = std::nextafter(1.0, 2.0) - 1.0;
+  Result r;
+  r.vertices = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}, {0, 0, 1}, {u, 0, 1}, {0, u, 1}};
+  r.faces = {{5, 0, 1}, {5, 1, 6}, {6, 1, 2}, {6, 2, 7}, {7, 2, 3}, {7, 3, 0}, {7, 0, 5}, {5, 6, 7},
+             {4, 1, 0}, {4, 2, 1}, {4, 3, 2}, {4, 0, 3}};
+  r.line_edge.assign(r.faces.size(), {false, false, false});
+  ASSERT_TRUE(mr::test::watertight(r).ok());
+  std::vector<char> cut(r.faces.size(), 1);
+  EXPECT_EQ(merge_rounded_together(r, cut), 2);
+  EXPECT_EQ(r.faces.size(), 8u);
+  EXPECT_EQ(r.vertices.size(), 6u);
+  EXPECT_TRUE(mr::test::watertight(r).ok());
+  Body out;
+  out.name = "result";
+  out.vertices = r.vertices;
+  out.faces = r.faces;
+  EXPECT_FALSE(self_intersection(out).has_value());
+  EXPECT_NEAR(mr::test::volume(r), 4.0 / 3.0, 1e-12);
+}
+
 TEST(RoundedEdges, OnlyCutFacesAreLookedAtAndDistinctEndsStay) {
   Result r = octahedron_with_split_apex();
   std::vector<char> cut(r.faces.size(), 0);  // no cut face: no crossing, nothing to merge
-  EXPECT_EQ(merge_zero_length_edges(r, cut), 0);
+  EXPECT_EQ(merge_rounded_together(r, cut), 0);
   EXPECT_EQ(r.faces.size(), 10u);
   TriMesh m;
   test::sphere(m, 2);
@@ -84,7 +109,7 @@ TEST(RoundedEdges, OnlyCutFacesAreLookedAtAndDistinctEndsStay) {
   s.faces = b.faces;
   s.line_edge.assign(s.faces.size(), {false, false, false});
   std::vector<char> all(s.faces.size(), 1);
-  EXPECT_EQ(merge_zero_length_edges(s, all), 0);
+  EXPECT_EQ(merge_rounded_together(s, all), 0);
   EXPECT_EQ(s.faces, b.faces);
 }
 
@@ -101,7 +126,7 @@ TEST(RoundedEdges, NearlyCoincidentSpheresGiveNoFaceWithCoincidentCorners) {
     Params prm;
     prm.sliver_angle_deg = sliver;
     const Result r = compute_union({a, b}, prm);
-    EXPECT_GT(r.zero_length_edges_merged, 0) << sliver;
+    EXPECT_GT(r.rounded_edges_merged, 0) << sliver;
     EXPECT_EQ(faces_with_coincident_corners(r), 0) << sliver;
     EXPECT_TRUE(mr::test::watertight(r).ok()) << sliver;
     EXPECT_NEAR(mr::test::volume(r), mr::test::volume(a), 1e-6 * mr::test::volume(a)) << sliver;

@@ -14,7 +14,5 @@ Watertight watertight(const surface_union::Result& r);
 double volume(const surface_union::Result& r);
 double volume(const surface_union::Body& b);
 surface_union::Body make_body(const TriMesh& m, double dx = 0, double dy = 0, double dz = 0, double scale = 1);
-/// Faces of different... pairs of non-adjacent faces of the result that intersect (exact test).
-int self_intersections(const surface_union::Result& r);
 
 }  // namespace mr::test
