@@ -237,7 +237,14 @@ private:
       }
     }
     // Crossings: every kept face against the faces near it (kept faces are filed at their
-    // old boxes, a few units from the new ones: they are tested among themselves).
+    // old boxes, a few units from the new ones: they are tested among themselves). A pair
+    // that met before the merge already (rounding made the arrangement cross, where sheets
+    // nearly coincide) does not refuse it: the merge adds no crossing.
+    auto met_before = [&](size_t i, const std::array<int, 3>& u) {
+      const auto& o = old_[i];
+      const V3 oq[3] = {at(o[0]), at(o[1]), at(o[2])}, uq[3] = {at(u[0]), at(u[1]), at(u[2])};
+      return triangles_meet(o, oq, u, uq);
+    };
     for (size_t i = 0; i < kept_.size(); ++i) {
       const int f = kept_[i];
       const auto& t = r_.faces[size_t(f)];
@@ -250,12 +257,16 @@ private:
         if (!alive_[size_t(g)] || std::binary_search(around_.begin(), around_.end(), g)) continue;
         const auto& u = r_.faces[size_t(g)];
         const V3 gq[3] = {at(u[0]), at(u[1]), at(u[2])};
-        if (triangles_meet(t, q, u, gq)) return false;
+        if (triangles_meet(t, q, u, gq) && !met_before(i, u)) return false;
       }
       for (size_t j = 0; j < i; ++j) {
         const auto& u = r_.faces[size_t(kept_[j])];
         const V3 uq[3] = {at(u[0]), at(u[1]), at(u[2])};
-        if (triangles_meet(t, q, u, uq)) return false;
+        if (triangles_meet(t, q, u, uq)) {
+          const auto& o = old_[j];
+          const V3 oq[3] = {at(o[0]), at(o[1]), at(o[2])}, pq[3] = {at(old_[i][0]), at(old_[i][1]), at(old_[i][2])};
+          if (!triangles_meet(old_[i], pq, o, oq)) return false;
+        }
       }
     }
     return true;
