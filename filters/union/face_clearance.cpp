@@ -399,7 +399,7 @@ void FaceGrid::add(int f) {
       }
 }
 
-void FaceGrid::near(const V3& lo, const V3& hi, std::vector<int>& out) {
+void FaceGrid::near(const V3& lo, const V3& hi, std::vector<int>& out, int from_level) {
   out.clear();
   ++stamp_;
   auto consider = [&](int g) {
@@ -410,7 +410,7 @@ void FaceGrid::near(const V3& lo, const V3& hi, std::vector<int>& out) {
       if (gb[1][c] < lo[c] || hi[c] < gb[0][c]) return;
     out.push_back(g);
   };
-  for (int level = 0; level < levels_used_; ++level) {
+  for (int level = std::max(from_level, 0); level < levels_used_; ++level) {
     int64_t a[3], b[3];
     for (int k = 0; k < 3; ++k) { a[k] = cell_of(lo[k], k, level); b[k] = cell_of(hi[k], k, level); }
     // A long query box on a fine level: fewer faces there than cells to look up.

@@ -41,8 +41,11 @@ public:
   void add(int f);
   /// Face f is gone (lookups no longer return it until it is added again).
   void remove(int f);
-  /// Faces whose box, as of their last add, overlaps [lo, hi].
-  void near(const V3& lo, const V3& hi, std::vector<int>& out);
+  /// Faces whose box, as of their last add, overlaps [lo, hi], of those filed on
+  /// `from_level` or coarser (0: all).
+  void near(const V3& lo, const V3& hi, std::vector<int>& out, int from_level = 0);
+  /// The level face f is filed on (-1: not filed).
+  int level(int f) const { return level_[size_t(f)]; }
   void box(int f, V3& lo, V3& hi) const;
   /// Face f's box as of its last add (its current one, for a face refiled after each change).
   const std::array<V3, 2>& filed_box(int f) const { return boxes_[size_t(f)]; }

@@ -46,6 +46,51 @@ std::vector<char> convex_vertices(const Body& b, const EdgeTable& edges, bool ou
   return convex;
 }
 
+/// Vertices whose star is one to one in a projection on a coordinate plane (per vertex: the
+/// plane across the largest component of its faces' summed normal): every face at v turns
+/// the same way there, strictly (exact), and their angles at v add up to one turn (doubles:
+/// under 3 pi; a fan closing twice, or two fans at one vertex, make at least 4 pi). The
+/// faces then lie in consecutive sectors around v's image without overlap, so two of them
+/// that share only v meet only at v. Smooth surfaces (scans, organic bodies) have this at
+/// nearly every vertex, convex or not. Needs a closed, manifold body (every fan closed).
+std::vector<char> vertices_with_flat_stars(const Body& b, const EdgeTable& edges) {
+  std::vector<char> flat(b.vertices.size(), 0);
+  for (int e = 0; e < edges.edge_count(); ++e)
+    if (edges.valence(e) != 2) return flat;
+  std::vector<V3> normal(b.vertices.size(), V3{0, 0, 0});
+  for (const auto& t : b.faces) {
+    const V3 n = cross(sub3(b.vertices[size_t(t[1])], b.vertices[size_t(t[0])]),
+                       sub3(b.vertices[size_t(t[2])], b.vertices[size_t(t[0])]));
+    for (int v : t)
+      for (size_t k = 0; k < 3; ++k) normal[size_t(v)][k] += n[k];
+  }
+  std::vector<int> axis(b.vertices.size()), sign(b.vertices.size());
+  for (size_t v = 0; v < b.vertices.size(); ++v) {
+    const V3& n = normal[v];
+    axis[v] = std::fabs(n[0]) >= std::fabs(n[1]) && std::fabs(n[0]) >= std::fabs(n[2]) ? 0 : std::fabs(n[1]) >= std::fabs(n[2]) ? 1 : 2;
+    sign[v] = n[size_t(axis[v])] > 0 ? 1 : n[size_t(axis[v])] < 0 ? -1 : 0;
+    flat[v] = sign[v] != 0;
+  }
+  std::vector<double> turn(b.vertices.size(), 0);
+  for (const auto& t : b.faces)
+    for (size_t z = 0; z < 3; ++z) {
+      const size_t v = size_t(t[z]);
+      if (!flat[v]) continue;
+      const int i = (axis[v] + 1) % 3, j = (axis[v] + 2) % 3;
+      const V3 &p = b.vertices[v], &a = b.vertices[size_t(t[(z + 1) % 3])], &c = b.vertices[size_t(t[(z + 2) % 3])];
+      if (orient2d(p.data(), a.data(), c.data(), i, j) != sign[v]) {
+        flat[v] = 0;
+        continue;
+      }
+      const double ux = a[size_t(i)] - p[size_t(i)], uy = a[size_t(j)] - p[size_t(j)];
+      const double wx = c[size_t(i)] - p[size_t(i)], wy = c[size_t(j)] - p[size_t(j)];
+      turn[v] += std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy);
+    }
+  for (size_t v = 0; v < turn.size(); ++v)
+    if (!(turn[v] < 3 * 3.14159265358979323846)) flat[v] = 0;
+  return flat;
+}
+
 /// Whether b is star-shaped about its vertex centroid c in the sense that proves it
 /// embedded: closed, manifold along edges, one piece, every face strictly facing away from
 /// c (exact), and the faces at each vertex going once around it as seen from c. The
@@ -113,22 +158,27 @@ std::optional<std::array<int, 2>> self_intersection(const Body& b, const EdgeTab
   const int nf = int(b.faces.size());
   if (nf < 2) return std::nullopt;
   if (star_shaped(b, edges, outward)) return std::nullopt;
-  const std::vector<char> convex = convex_vertices(b, edges, outward);
+  std::vector<char> convex = convex_vertices(b, edges, outward);
+  const std::vector<char> flat = vertices_with_flat_stars(b, edges);
+  for (size_t v = 0; v < convex.size(); ++v) convex[v] = convex[v] || flat[v];
   FaceGrid grid(b.vertices, b.faces);
   std::vector<int> near;
   for (int f = 0; f < nf; ++f) {
     V3 lo, hi;
     grid.box(f, lo, hi);
-    grid.near(lo, hi, near);
+    // Each pair once, from the face filed finer (or, on one level, the lower): the lookup
+    // then skips the finer levels, where a large face's box covers many cells.
+    const int level = grid.level(f);
+    grid.near(lo, hi, near, level);
     const auto& tf = b.faces[size_t(f)];
     for (int g : near) {
-      if (g <= f) continue;  // each pair once
+      if (grid.level(g) == level && g <= f) continue;
       const auto& tg = b.faces[size_t(g)];
       int shared = 0, at = -1;
       for (int x : tf)
         if (x == tg[0] || x == tg[1] || x == tg[2]) { ++shared; at = x; }
       if (shared >= 2) continue;                              // neighbours across an edge meet only along it
-      if (shared == 1 && convex[size_t(at)]) continue;  // on a convex cone at their corner
+      if (shared == 1 && convex[size_t(at)]) continue;  // on a convex cone at their corner, or one to one in a projection
       const V3 pf[3] = {b.vertices[size_t(tf[0])], b.vertices[size_t(tf[1])], b.vertices[size_t(tf[2])]};
       const V3 pg[3] = {b.vertices[size_t(tg[0])], b.vertices[size_t(tg[1])], b.vertices[size_t(tg[2])]};
       if (triangles_meet(tf, pf, tg, pg)) return std::array<int, 2>{f, g};
