@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <stdexcept>
 #include <system_error>
 #include <vector>
 
@@ -117,7 +118,12 @@ int validate_bodies(std::vector<Body>& bodies) {
 }
 
 SelfIntersectionCheck::SelfIntersectionCheck(const std::vector<Body>& bodies)
-    : bodies_(bodies), crossing_(bodies.size()), error_(bodies.size()) {
+    : bodies_(bodies), first_part_(bodies.size() + 1, 0), scan_(bodies.size()),
+      built_(new std::once_flag[bodies.size()]) {
+  for (size_t i = 0; i < bodies.size(); ++i)
+    first_part_[i + 1] = first_part_[i] + std::max<size_t>(1, (bodies[i].faces.size() + kPartFaces - 1) / kPartFaces);
+  crossing_.resize(first_part_.back());
+  error_.resize(first_part_.back());
   if (worker_count() <= 1) finish();
 }
 
@@ -142,13 +148,21 @@ void SelfIntersectionCheck::start(std::function<void()> first, std::function<voi
 }
 
 bool SelfIntersectionCheck::check_next() {
-  // (The bodies face outward now: validate_bodies turned the others.)
-  const size_t i = next_.fetch_add(1);
-  if (i >= bodies_.size()) return false;
+  const size_t part = next_.fetch_add(1);
+  if (part >= first_part_.back()) return false;
+  const size_t i = size_t(std::upper_bound(first_part_.begin(), first_part_.end(), part) - first_part_.begin()) - 1;
+  // Each thread keeps its own marks for the grids' lookups (their stamps only grow).
+  thread_local FaceGrid::Marks marks;
   try {
-    crossing_[i] = self_intersection(bodies_[i]);
+    // (The bodies face outward now: validate_bodies turned the others.) A thread taking
+    // a later part of the body waits here for the one building it.
+    std::call_once(built_[i], [&] { scan_[i] = std::make_unique<SelfIntersectionScan>(bodies_[i]); });
+    if (!scan_[i]) throw std::runtime_error("self-intersection check of " + label(bodies_[i], i) + " was not built");
+    const int begin = int((part - first_part_[i]) * kPartFaces);
+    const int end = std::min(int(bodies_[i].faces.size()), begin + kPartFaces);
+    crossing_[part] = scan_[i]->scan(begin, end, marks);
   } catch (...) {
-    error_[i] = std::current_exception();
+    error_[part] = std::current_exception();
   }
   return true;
 }
@@ -161,10 +175,12 @@ void SelfIntersectionCheck::work() {
 void SelfIntersectionCheck::finish() {
   work();
   if (thread_.joinable()) thread_.join();
-  for (size_t i = 0; i < bodies_.size(); ++i) {
-    if (error_[i]) std::rethrow_exception(error_[i]);
-    if (crossing_[i]) throw crosses_itself(bodies_[i], i, *crossing_[i]);
-  }
+  scan_.clear();  // the grids
+  for (size_t i = 0; i < bodies_.size(); ++i)
+    for (size_t part = first_part_[i]; part < first_part_[i + 1]; ++part) {
+      if (error_[part]) std::rethrow_exception(error_[part]);
+      if (crossing_[part]) throw crosses_itself(bodies_[i], i, *crossing_[part]);
+    }
 }
 
 }  // namespace mr::surface_union

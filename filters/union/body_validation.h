@@ -4,12 +4,15 @@
 // step (SelfIntersectionCheck).
 #pragma once
 
+#include "union/self_intersection.h"
 #include "union/surface_union.h"
 
 #include <array>
 #include <atomic>
 #include <exception>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <thread>
 #include <vector>
@@ -39,17 +42,24 @@ public:
   /// between tasks of its own: it serves the sliver step), and then checks whatever is
   /// left. Without a thread, `first` runs here and `then` not. Call once.
   void start(std::function<void()> first, std::function<void()> then = {});
-  /// Checks the next body not taken yet; false when none was left.
+  /// Checks the next part not taken yet (a range of one body's faces, the body's grid
+  /// built by whoever takes its first part); false when none was left.
   bool check_next();
   /// Checks what is left on this thread too, and waits.
   /// \throw TopologyError naming the first body that crosses itself.
   void finish();
 
 private:
-  void work();  // takes bodies one at a time until none is left
+  void work();  // takes parts one at a time until none is left
+  /// Parts of this many faces: a large body's check is shared out between the threads
+  /// (the helper between its sliver-step tasks, this thread in finish()).
+  static constexpr int kPartFaces = 8192;
   const std::vector<Body>& bodies_;
-  std::vector<std::optional<std::array<int, 2>>> crossing_;  // per body
-  std::vector<std::exception_ptr> error_;                     // per body (out of memory)
+  std::vector<size_t> first_part_;  // per body, and one past the last part
+  std::vector<std::unique_ptr<SelfIntersectionScan>> scan_;  // per body, built once
+  std::unique_ptr<std::once_flag[]> built_;                  // per body
+  std::vector<std::optional<std::array<int, 2>>> crossing_;  // per part
+  std::vector<std::exception_ptr> error_;                     // per part (out of memory)
   std::atomic<size_t> next_{0};
   std::thread thread_;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "union/exact.h"
 #include "union/vec3.h"
@@ -288,7 +289,7 @@ bool flat_convex_quad(const V3& u, const V3& v, const V3& c, const V3& d) {
 }
 
 FaceGrid::FaceGrid(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& faces)
-    : vertices_(vertices), faces_(faces), boxes_(faces.size()), level_(faces.size(), -1), seen_(faces.size(), 0) {
+    : vertices_(vertices), faces_(faces), boxes_(faces.size()), level_(faces.size(), -1) {
   if (faces.empty()) return;
   V3 lo_all{1e300, 1e300, 1e300}, hi_all{-1e300, -1e300, -1e300};
   std::vector<double> sizes;
@@ -353,6 +354,11 @@ int* FaceGrid::head_of(int64_t key) {
   return slot ? &heads_[size_t(*slot)] : nullptr;
 }
 
+const int* FaceGrid::head_of(int64_t key) const {
+  const int* slot = cell_index_.find(key);
+  return slot ? &heads_[size_t(*slot)] : nullptr;
+}
+
 int& FaceGrid::head_or_new(int64_t key) {
   const auto [slot, added] = cell_index_.emplace(key, int(heads_.size()));
   if (added) heads_.push_back(-1);
@@ -399,12 +405,18 @@ void FaceGrid::add(int f) {
       }
 }
 
-void FaceGrid::near(const V3& lo, const V3& hi, std::vector<int>& out, int from_level) {
+void FaceGrid::near(const V3& lo, const V3& hi, std::vector<int>& out, int from_level, Marks& marks) const {
   out.clear();
-  ++stamp_;
+  if (marks.seen.size() < faces_.size()) marks.seen.resize(faces_.size(), 0);  // (stamps only grow: old marks are below)
+  if (marks.stamp == std::numeric_limits<int>::max()) {  // (marks kept by a thread for many unions)
+    std::fill(marks.seen.begin(), marks.seen.end(), 0);
+    marks.stamp = 0;
+  }
+  const int stamp = ++marks.stamp;
+  std::vector<int>& seen = marks.seen;
   auto consider = [&](int g) {
-    if (seen_[g] == stamp_ || level_[g] < 0) return;
-    seen_[g] = stamp_;
+    if (seen[size_t(g)] == stamp || level_[size_t(g)] < 0) return;
+    seen[size_t(g)] = stamp;
     const auto& gb = boxes_[g];
     for (int c = 0; c < 3; ++c)
       if (gb[1][c] < lo[c] || hi[c] < gb[0][c]) return;

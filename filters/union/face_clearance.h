@@ -43,7 +43,16 @@ public:
   void remove(int f);
   /// Faces whose box, as of their last add, overlaps [lo, hi], of those filed on
   /// `from_level` or coarser (0: all).
-  void near(const V3& lo, const V3& hi, std::vector<int>& out, int from_level = 0);
+  void near(const V3& lo, const V3& hi, std::vector<int>& out, int from_level = 0) {
+    near(lo, hi, out, from_level, marks_);
+  }
+  /// Which faces a lookup has listed already: one per thread looking up at once.
+  struct Marks {
+    std::vector<int> seen;
+    int stamp = 0;
+  };
+  /// The same on a grid no thread changes meanwhile, with the caller's marks.
+  void near(const V3& lo, const V3& hi, std::vector<int>& out, int from_level, Marks& marks) const;
   /// The level face f is filed on (-1: not filed).
   int level(int f) const { return level_[size_t(f)]; }
   void box(int f, V3& lo, V3& hi) const;
@@ -74,6 +83,7 @@ private:
     int face, next;
   };
   int* head_of(int64_t key);         // the list of a cell, or nullptr
+  const int* head_of(int64_t key) const;
   int& head_or_new(int64_t key);     // the list of a cell, made if missing
   FlatIndexMap<int64_t, CellKeyHash> cell_index_;
   std::vector<int> heads_;           // per cell: first entry, -1 when empty
@@ -81,8 +91,7 @@ private:
   int free_entry_ = -1;              // removed entries, reused
   std::vector<std::array<V3, 2>> boxes_;  // as of the last add
   std::vector<int> level_;                // where each face is filed; -1: not filed
-  std::vector<int> seen_;
-  int stamp_ = 0;
+  Marks marks_;
 };
 
 }  // namespace mr::surface_union

@@ -154,22 +154,30 @@ std::optional<std::array<int, 2>> self_intersection(const Body& b) {
   return self_intersection(b, EdgeTable(b.vertices.size(), b.faces), faces_outward(b));
 }
 
-std::optional<std::array<int, 2>> self_intersection(const Body& b, const EdgeTable& edges, bool outward) {
-  const int nf = int(b.faces.size());
-  if (nf < 2) return std::nullopt;
-  if (star_shaped(b, edges, outward)) return std::nullopt;
-  std::vector<char> convex = convex_vertices(b, edges, outward);
+namespace {
+
+/// The check's parts that need the edge table: whether the body is skipped whole, and the
+/// vertices where faces meeting only there need no test.
+void shortcuts(const Body& b, const EdgeTable& edges, bool outward, bool& skip, std::vector<char>& convex) {
+  skip = b.faces.size() < 2 || star_shaped(b, edges, outward);
+  if (skip) return;
+  convex = convex_vertices(b, edges, outward);
   const std::vector<char> flat = vertices_with_flat_stars(b, edges);
   for (size_t v = 0; v < convex.size(); ++v) convex[v] = convex[v] || flat[v];
-  FaceGrid grid(b.vertices, b.faces);
+}
+
+/// Pairs of faces (f, g) whose boxes overlap, f in [begin, end), each pair once (found
+/// from the face filed finer, or on one level from the lower), but where a shortcut
+/// holds, tested exactly; the first that meets.
+std::optional<std::array<int, 2>> scan_pairs(const Body& b, const std::vector<char>& convex, const FaceGrid& grid,
+                                             int begin, int end, FaceGrid::Marks& marks) {
   std::vector<int> near;
-  for (int f = 0; f < nf; ++f) {
+  for (int f = begin; f < end; ++f) {
     V3 lo, hi;
     grid.box(f, lo, hi);
-    // Each pair once, from the face filed finer (or, on one level, the lower): the lookup
-    // then skips the finer levels, where a large face's box covers many cells.
+    // (The lookup then skips the finer levels, where a large face's box covers many cells.)
     const int level = grid.level(f);
-    grid.near(lo, hi, near, level);
+    grid.near(lo, hi, near, level, marks);
     const auto& tf = b.faces[size_t(f)];
     for (int g : near) {
       if (grid.level(g) == level && g <= f) continue;
@@ -177,14 +185,36 @@ std::optional<std::array<int, 2>> self_intersection(const Body& b, const EdgeTab
       int shared = 0, at = -1;
       for (int x : tf)
         if (x == tg[0] || x == tg[1] || x == tg[2]) { ++shared; at = x; }
-      if (shared >= 2) continue;                              // neighbours across an edge meet only along it
+      if (shared >= 2) continue;                        // neighbours across an edge meet only along it
       if (shared == 1 && convex[size_t(at)]) continue;  // on a convex cone at their corner, or one to one in a projection
       const V3 pf[3] = {b.vertices[size_t(tf[0])], b.vertices[size_t(tf[1])], b.vertices[size_t(tf[2])]};
       const V3 pg[3] = {b.vertices[size_t(tg[0])], b.vertices[size_t(tg[1])], b.vertices[size_t(tg[2])]};
-      if (triangles_meet(tf, pf, tg, pg)) return std::array<int, 2>{f, g};
+      if (triangles_meet(tf, pf, tg, pg)) return std::array<int, 2>{std::min(f, g), std::max(f, g)};
     }
   }
   return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::array<int, 2>> self_intersection(const Body& b, const EdgeTable& edges, bool outward) {
+  bool skip = false;
+  std::vector<char> convex;
+  shortcuts(b, edges, outward, skip, convex);
+  if (skip) return std::nullopt;
+  const FaceGrid grid(b.vertices, b.faces);
+  FaceGrid::Marks marks;
+  return scan_pairs(b, convex, grid, 0, int(b.faces.size()), marks);
+}
+
+SelfIntersectionScan::SelfIntersectionScan(const Body& b) : b_(b) {
+  shortcuts(b, EdgeTable(b.vertices.size(), b.faces), faces_outward(b), skip_, convex_);
+  if (!skip_) grid_.emplace(b.vertices, b.faces);
+}
+
+std::optional<std::array<int, 2>> SelfIntersectionScan::scan(int begin, int end, FaceGrid::Marks& marks) const {
+  if (skip_) return std::nullopt;
+  return scan_pairs(b_, convex_, *grid_, begin, end, marks);
 }
 
 }  // namespace mr::surface_union

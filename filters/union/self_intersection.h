@@ -6,6 +6,7 @@
 #pragma once
 
 #include "common/edge_table.h"
+#include "union/face_clearance.h"
 #include "union/surface_union.h"
 
 #include <array>
@@ -17,12 +18,30 @@ namespace mr::surface_union {
 bool faces_outward(const Body& b);
 
 /// Two faces of `b` that meet other than along what they share (corners count as shared
-/// when their ids or their positions are equal): the first found with the smallest first
-/// face, or none. `edges` is b's edge table; `outward` as faces_outward(b). The convex
+/// when their ids or their positions are equal), lower face first: the first found
+/// scanning the faces in order, or none. `edges` is b's edge table; `outward` as faces_outward(b). The convex
 /// shortcuts need a closed, manifold body; on any other every pair is tested.
 std::optional<std::array<int, 2>> self_intersection(const Body& b, const EdgeTable& edges, bool outward);
 
 /// The same, building the edge table and the orientation.
 std::optional<std::array<int, 2>> self_intersection(const Body& b);
+
+/// self_intersection in parts, to share one body's check out among threads: built once
+/// (edge table, orientation, the shortcuts, the face grid), then scanned in ranges of
+/// first faces, on any threads at once, each with its own marks.
+class SelfIntersectionScan {
+public:
+  explicit SelfIntersectionScan(const Body& b);
+  /// Two faces that meet (lower first), the first found scanning first faces in [begin, end)
+  /// in order: scans of consecutive ranges give self_intersection's pair from the first
+  /// range that finds one.
+  std::optional<std::array<int, 2>> scan(int begin, int end, FaceGrid::Marks& marks) const;
+
+private:
+  const Body& b_;
+  bool skip_ = false;          // star-shaped: no two faces cross
+  std::vector<char> convex_;   // per vertex: faces meeting only there cannot cross
+  std::optional<FaceGrid> grid_;
+};
 
 }  // namespace mr::surface_union

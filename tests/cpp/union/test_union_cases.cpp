@@ -288,6 +288,38 @@ TEST(UnionBadInput, SelfIntersectionsOfLargeBodies) {
   EXPECT_TRUE(self_intersection(spiked).has_value());
 }
 
+TEST(UnionBadInput, LargeBodiesAreCheckedInPartsWithTheSequentialAnswer) {
+  // Bodies over 8192 faces are checked in parts shared between threads: a clean ring of
+  // cubes (not star-shaped) passes, and a spiked cube's crossing, wherever it lies, gives
+  // the message with the pair the sequential scan finds.
+  std::vector<Body> ring;
+  for (const auto& [x, y] : {std::pair{0.0, 0.0}, {1.5, 0.0}, {3.0, 0.0}, {3.0, 1.5}, {3.0, 3.0}, {1.5, 3.0},
+                             {0.0, 3.0}, {0.0, 1.5}})
+    ring.push_back(cube_body(16, x, y, 0));
+  const Result united = unite(ring, 0.0);
+  Body ring_body;
+  ring_body.vertices = united.vertices;
+  ring_body.faces = united.faces;
+  ASSERT_GT(ring_body.faces.size(), 8192u);
+  EXPECT_NO_THROW(compute_union({ring_body, cube_body(1, 10, 0, 0)}));
+  for (const std::array<double, 3> corner : {std::array<double, 3>{0, 0, 1}, {1, 1, 0}}) {
+    Body spiked = cube_body(40, 0, 0, 0);
+    ASSERT_GT(spiked.faces.size(), 2 * 8192u);
+    for (auto& v : spiked.vertices)
+      if (v == corner) v = {1 - corner[0], 1 - corner[1], corner[2] == 1 ? -1.5 : 2.5};
+    const auto pair = self_intersection(spiked);
+    ASSERT_TRUE(pair.has_value());
+    const std::string expected = "its faces " + std::to_string((*pair)[0]) + " and " + std::to_string((*pair)[1]);
+    try {
+      compute_union({cube_body(1, 5, 0, 0), spiked});
+      ADD_FAILURE() << "the spiked cube was not refused";
+    } catch (const TopologyError& e) {
+      EXPECT_NE(std::string(e.what()).find("body 1"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(UnionBadInput, BodyWindingTwiceAroundAVertexIsNotTakenForStarShaped) {
   // A bipyramid over a pentagram: every face faces away from the centre, the body is
   // closed, manifold and one piece, but the faces at each apex go twice around it, so
