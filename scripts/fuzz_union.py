@@ -1,13 +1,17 @@
 #!/usr/bin/env python3
 """Random unions with many degenerate contacts, checked against manifold3d.
 
-Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex | --selfcrossing]
+Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex | --selfcrossing | --models]
 Each seed builds 2-7 bodies of one kind: grid-aligned cubes (coplanar faces, shared edges,
 touching), spheres on a 0.1 grid (identical copies, touching poles), subdivided cubes and
 spheres on a quarter grid, spheres of several radii sharing centres and poles, randomly rotated
 cubes. With --nonconvex the bodies are not convex: spheres with radial noise (blobs), rotated
 tori (not star-shaped), and a blob with copies of itself scaled about one of its vertices or
 shifted on a grid (coincident and nearly coincident faces).
+With --models the bodies are one of the shared CAD and organic models (cad/joint.off, cad/part.off,
+cad/fandisk.obj, organic/rocker-arm.obj, beside the repository) and one or two copies of it
+turned at random, by quarter turns (nearly coincident faces where the model is symmetric) or
+only shifted on a grid.
 With --selfcrossing one body is a blob and a shifted copy of it in one layer (it crosses
 itself), among good blobs cut by it: the union must refuse it by name, whatever its steps did
 with it meanwhile (the self-intersection check runs beside the sliver step), and not crash.
@@ -19,6 +23,7 @@ flags and exact rationals confirm (meshregrid.quality.exactly_intersecting_faces
 exact kernel) arbitrates: manifold3d perturbs coincident geometry symbolically. Prints the
 failing seeds; not part of the test suite.
 """
+import pathlib
 import sys
 
 import numpy as np
@@ -138,6 +143,41 @@ def selfcrossing_case(seed, sphere):
     return at, parts
 
 
+MODELS = ["cad/joint.off", "cad/part.off", "cad/fandisk.obj", "organic/rocker-arm.obj"]
+
+
+def load_models():
+    root = pathlib.Path(__file__).resolve().parent.parent.parent / "shared" / "data"
+    out = []
+    for name in MODELS:
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(str(root / name))
+        out.append((ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()))
+    return out
+
+
+def models_case(seed, models):
+    rng = np.random.default_rng(seed)
+    kind = seed % len(models)
+    v, f = models[kind]
+    centre, size = v.mean(0), np.ptp(v, 0).max()
+    parts = [(v, f)]
+    for _ in range(rng.integers(1, 3)):
+        mode = rng.integers(0, 3)
+        if mode == 0:
+            turn, shift = rotation(rng), (rng.random(3) - 0.5) * size * rng.choice([0.0, 0.05, 0.3])
+        elif mode == 1:
+            a = rng.integers(0, 4, 3) * np.pi / 2
+            rx = np.array([[1, 0, 0], [0, np.cos(a[0]), -np.sin(a[0])], [0, np.sin(a[0]), np.cos(a[0])]])
+            ry = np.array([[np.cos(a[1]), 0, np.sin(a[1])], [0, 1, 0], [-np.sin(a[1]), 0, np.cos(a[1])]])
+            rz = np.array([[np.cos(a[2]), -np.sin(a[2]), 0], [np.sin(a[2]), np.cos(a[2]), 0], [0, 0, 1]])
+            turn, shift = rz @ ry @ rx, (rng.random(3) - 0.5) * size * rng.choice([0.0, 0.05, 0.3])
+        else:
+            turn, shift = np.eye(3), np.round((rng.random(3) - 0.5) * 8) / 16 * size
+        parts.append(((v - centre) @ turn.T + centre + shift, f))
+    return kind, parts
+
+
 def check_refused(first, last):
     _, sphere, _ = shapes()
     bad = 0
@@ -179,13 +219,19 @@ def main():
     if "--selfcrossing" in sys.argv[3:]:
         return check_refused(first, last)
     nonconvex = "--nonconvex" in sys.argv[3:]
+    models = load_models() if "--models" in sys.argv[3:] else None
     cube, sphere, cube2 = shapes()
     ms = pymeshlab.MeshSet()
     ms.create_torus(hradius=0.6, vradius=0.2, hsubdiv=24, vsubdiv=12)
     torus = (ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix())
     bad = disagreements = 0
     for seed in range(first, last):
-        kind, parts = nonconvex_case(seed, sphere, torus) if nonconvex else case(seed, cube, sphere, cube2)
+        if models:
+            kind, parts = models_case(seed, models)
+        elif nonconvex:
+            kind, parts = nonconvex_case(seed, sphere, torus)
+        else:
+            kind, parts = case(seed, cube, sphere, cube2)
         ref = reference(parts)
         for sliver, tol in ((0.0, 1e-9), (10.0, 1.01e-6)):
             ms = pymeshlab.MeshSet()
