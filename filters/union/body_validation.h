@@ -42,8 +42,8 @@ public:
   /// between tasks of its own: it serves the sliver step), and then checks whatever is
   /// left. Without a thread, `first` runs here and `then` not. Call once.
   void start(std::function<void()> first, std::function<void()> then = {});
-  /// Checks the next part not taken yet (a range of one body's faces, the body's grid
-  /// built by whoever takes its first part); false when none was left.
+  /// Checks the next part not taken yet (a range of one body's faces; the body's grid is
+  /// built once, by the first thread to take one of its parts); false when none was left.
   bool check_next();
   /// Checks what is left on this thread too, and waits.
   /// \throw TopologyError naming the first body that crosses itself.

@@ -17,8 +17,8 @@ namespace mr::surface_union {
 /// none may turn over, degenerate or cross another. Line flags of the two sides that
 /// become one are joined. Faces, `cut` and line flags are compacted, and vertices no face
 /// uses dropped. Only cut faces are looked for such edges (an input face has distinct
-/// corners, so one end at least is a crossing). Returns the number of edges merged; an
-/// edge whose ends fail the checks is left as it is.
+/// corners, so one end at least is a crossing). Returns the number of vertices merged
+/// away; an edge whose ends fail the checks is left as it is.
 int merge_rounded_together(Result& r, std::vector<char>& cut);
 
 }  // namespace mr::surface_union

@@ -438,11 +438,11 @@ void Collapser::keep_cut_surface() {
   cut_distance_.assign(r_.faces.size(), 0);
   touching_.assign(r_.vertices.size(), 0);
   for (int x = 0; x < int(r_.vertices.size()); ++x) {
-    int others = vertices_at(P(x)) - 1;
+    const int others = vertices_at(P(x)) - 1;
     if (others == 0) continue;
     // A neighbour at the same place is the other end of an edge that rounding left without
-    // length (its ends failed the link condition, rounded_edges.h): the same sheet, whose
-    // needles the step must be free to mend, not a touching one.
+    // length (its merge was refused, rounded_edges.h): the same sheet, whose needles the
+    // step must be free to mend, not a touching one.
     std::vector<int>& ring = scratch_at_v_;
     ring.clear();
     for (int f : vf_[x])
