@@ -229,6 +229,7 @@ private:
           int c = -1;
           for (int v : r_.faces[size_t(g)])
             if (v != x && v != y) c = v;
+          if (c < 0) return false;  // (a face with a repeated corner: not one this step makes)
           if (orient3d(at(x).data(), at(y).data(), at(own).data(), at(c).data()) != 0) continue;
           if (orient2d(at(x).data(), at(y).data(), at(own).data(), a, b) *
                   orient2d(at(x).data(), at(y).data(), at(c).data(), a, b) >= 0)
