@@ -10,7 +10,7 @@ BODIES = {"layers": 0, "components": 1}
 def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 10.0,
           sliver_max_deviation=None, lines_layer: bool = False, remesh: bool = False,
           target_length=None, target_percent: float = 1.0, ridge_angle: float = 30.0,
-          corner_angle: float = 45.0, improvement_iterations: int = 3) -> dict:
+          corner_angle: float = 45.0, improvement_iterations: int = 5) -> dict:
     """Unites the bodies of ``ms`` into a new layer (which becomes current).
 
     ``sliver_max_deviation`` (fraction of the bounding-box diagonal) defaults to the
@@ -19,6 +19,12 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
     by the advancing front (stage 2) into a further layer, with the intersection lines
     kept as ridges besides the edges sharper than ``ridge_angle``; the union's dictionary
     then gets ``remesh`` with the remesh filter's dictionary and ``union_layer``.
+
+    ``improvement_iterations`` is 5 here, not the remesh filter's 3: the union's lines and
+    the bodies' own ridges meet in more places, and on the issue's sphere and cylinder (64
+    segments, 1% of the diagonal) three sweeps left one face at 29.5 degrees, five reach 34.1.
+    Where two lines meet at an angle under 30 degrees (triple points of a sphere cluster)
+    no sweep can reach 30 there: the wedge between them bounds the angles of its faces.
     """
     if bodies not in BODIES:
         raise ValueError(f"bodies must be one of {sorted(BODIES)}, got {bodies!r}")

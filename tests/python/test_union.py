@@ -386,6 +386,21 @@ def test_pipeline_union_then_regrid_keeps_the_line_and_reaches_30_degrees():
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
+@pytest.mark.parametrize("target_percent", [1.0, 2.0])
+def test_pipeline_union_then_regrid_reaches_30_degrees_on_sphere_and_cylinder(target_percent):
+    # The quality case (its peers leave 2-27% of faces under 5 degrees there): the
+    # union regridded with the intersection lines and the cylinder's rims as ridges.
+    from meshregrid import pipeline_union
+    ms = sphere_and_cylinder()
+    r = pipeline_union.union(ms, remesh=True, target_percent=target_percent)
+    regrid = r["remesh"]
+    assert regrid["unmeshed_sides"] == 0
+    assert regrid["lines"] >= r["intersection_lines"] == 2
+    assert angles(ms.current_mesh()).min() >= 30.0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
+
 def test_cli_union_writes_union_and_lines(tmp_path):
     import json
     import subprocess
