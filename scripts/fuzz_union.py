@@ -148,6 +148,8 @@ MODELS = ["cad/joint.off", "cad/part.off", "cad/fandisk.obj", "organic/rocker-ar
 
 def load_models():
     root = pathlib.Path(__file__).resolve().parent.parent.parent / "shared" / "data"
+    if not root.is_dir():
+        sys.exit(f"--models needs the shared meshes beside the repository ({root})")
     out = []
     for name in MODELS:
         ms = pymeshlab.MeshSet()

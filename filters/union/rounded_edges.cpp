@@ -237,19 +237,26 @@ private:
         }
       }
     }
-    // Crossings: every kept face against the faces near it (kept faces are filed at their
-    // old boxes, a few units from the new ones: they are tested among themselves). A pair
-    // that met before the merge already (rounding made the arrangement cross, where sheets
-    // nearly coincide) does not refuse it: the merge adds no crossing.
-    auto met_before = [&](size_t i, const std::array<int, 3>& u) {
-      const auto& o = old_[i];
-      const V3 oq[3] = {at(o[0]), at(o[1]), at(o[2])}, uq[3] = {at(u[0]), at(u[1]), at(u[2])};
-      return triangles_meet(o, oq, u, uq);
+    // Crossings: the moved faces against the faces near them and against the other kept
+    // faces (kept faces are filed at their old boxes, a few units from the new ones). A
+    // kept face that did not move keeps its shape, and its corner at rep sits where its
+    // member did, so what it meets does not change. A pair that met before the merge
+    // already (rounding made the arrangement cross, where sheets nearly coincide) does not
+    // refuse it: the merge adds no crossing.
+    auto corners = [&](const std::array<int, 3>& t, V3 q[3]) {
+      for (int z = 0; z < 3; ++z) q[z] = at(t[size_t(z)]);
     };
-    for (size_t i = 0; i < kept_.size(); ++i) {
-      const int f = kept_[i];
-      const auto& t = r_.faces[size_t(f)];
-      const V3 q[3] = {at(t[0]), at(t[1]), at(t[2])};
+    // Kept face i and face u (as they were) met before the merge.
+    auto met_before = [&](size_t i, const std::array<int, 3>& u) {
+      V3 oq[3], uq[3];
+      corners(old_[i], oq);
+      corners(u, uq);
+      return triangles_meet(old_[i], oq, u, uq);
+    };
+    for (int i : moved_) {
+      const auto& t = r_.faces[size_t(kept_[size_t(i)])];
+      V3 q[3];
+      corners(t, q);
       V3 lo = q[0], hi = q[0];
       for (int z = 1; z < 3; ++z)
         for (int m = 0; m < 3; ++m) { lo[m] = std::min(lo[m], q[z][m]); hi[m] = std::max(hi[m], q[z][m]); }
@@ -257,17 +264,17 @@ private:
       for (int g : near_) {
         if (!alive_[size_t(g)] || std::binary_search(around_.begin(), around_.end(), g)) continue;
         const auto& u = r_.faces[size_t(g)];
-        const V3 gq[3] = {at(u[0]), at(u[1]), at(u[2])};
-        if (triangles_meet(t, q, u, gq) && !met_before(i, u)) return false;
+        V3 gq[3];
+        corners(u, gq);
+        if (triangles_meet(t, q, u, gq) && !met_before(size_t(i), u)) return false;
       }
-      for (size_t j = 0; j < i; ++j) {
+      for (size_t j = 0; j < kept_.size(); ++j) {
+        // (Two moved faces: the pair once, from the later.)
+        if (int(j) == i || (int(j) > i && std::binary_search(moved_.begin(), moved_.end(), int(j)))) continue;
         const auto& u = r_.faces[size_t(kept_[j])];
-        const V3 uq[3] = {at(u[0]), at(u[1]), at(u[2])};
-        if (triangles_meet(t, q, u, uq)) {
-          const auto& o = old_[j];
-          const V3 oq[3] = {at(o[0]), at(o[1]), at(o[2])}, pq[3] = {at(old_[i][0]), at(old_[i][1]), at(old_[i][2])};
-          if (!triangles_meet(old_[i], pq, o, oq)) return false;
-        }
+        V3 uq[3];
+        corners(u, uq);
+        if (triangles_meet(t, q, u, uq) && !met_before(size_t(i), old_[j])) return false;
       }
     }
     return true;

@@ -67,7 +67,9 @@ std::vector<char> vertices_with_flat_stars(const Body& b, const EdgeTable& edges
   std::vector<int> axis(b.vertices.size()), sign(b.vertices.size());
   for (size_t v = 0; v < b.vertices.size(); ++v) {
     const V3& n = normal[v];
-    axis[v] = std::fabs(n[0]) >= std::fabs(n[1]) && std::fabs(n[0]) >= std::fabs(n[2]) ? 0 : std::fabs(n[1]) >= std::fabs(n[2]) ? 1 : 2;
+    axis[v] = std::fabs(n[0]) >= std::fabs(n[1]) && std::fabs(n[0]) >= std::fabs(n[2]) ? 0
+              : std::fabs(n[1]) >= std::fabs(n[2])                                  ? 1
+                                                                                    : 2;
     sign[v] = n[size_t(axis[v])] > 0 ? 1 : n[size_t(axis[v])] < 0 ? -1 : 0;
     flat[v] = sign[v] != 0;
   }

@@ -705,7 +705,6 @@ def test_sliver_step_keeps_the_surface_near_the_exact_union(name, bound):
     assert one_way_hausdorff(ms, exact, improved, 200000) <= bound * diag
 
 
-
 def _turned_half_a_turn(ms):
     """A copy of the current mesh turned by a floating-point half turn about the x axis
     through its centroid: a symmetric part then nearly coincides with its copy."""
