@@ -29,6 +29,7 @@ void split_copy(Result& r, std::vector<char>& cut, std::vector<int>& partner, in
     r.line_edge[size_t(face)][size_t(side)] = line[size_t(side)];
     r.line_edge[size_t(face)][size_t(s2)] = line[size_t(s2)];
     r.faces.push_back({m, to, third});
+    if (!r.face_source.empty()) r.face_source.push_back(r.face_source[size_t(face)]);
     r.line_edge.push_back({line[size_t(side)], line[size_t(s1)], false});
     cut.push_back(cut[size_t(face)]);
     link(partner, 3 * fresh + 1, across_to_third);  // (to -> third)

@@ -295,11 +295,13 @@ private:
       }
       r_.faces[k] = r_.faces[f];
       r_.line_edge[k] = r_.line_edge[f];
+      if (!r_.face_source.empty()) r_.face_source[k] = r_.face_source[f];
       cut_[k] = cut_[f];
       ++k;
     }
     r_.faces.resize(k);
     r_.line_edge.resize(k);
+    if (!r_.face_source.empty()) r_.face_source.resize(k);
     cut_.resize(k);
     r_.vertices = std::move(vertices);
   }

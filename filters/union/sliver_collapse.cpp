@@ -354,6 +354,7 @@ private:
   std::vector<std::array<int, 2>> removal_sides_;
   std::vector<V3> removal_at_;
   std::vector<std::array<int, 3>> removal_tris_;
+  std::vector<int> removal_sources_;
   std::vector<int> ring_mark_;  // per vertex: the stamp of the last ring it was put in
   int ring_stamp_ = 0;
 
@@ -1057,6 +1058,18 @@ bool Collapser::attempt_removal(int v) {
     if (!near_and_clear(1e300)) return false;
     keep_cut_distance();
   }
+  // Each new face's source: the old face at one of its corners that is not an end of the
+  // line through v (faces at such a corner lie on its side of the line, the same body's).
+  std::vector<int>& sources = removal_sources_;
+  sources.clear();
+  if (!r_.face_source.empty())
+    for (const auto& t : tris) {
+      int c = t[0];
+      for (int z : t)
+        if (z != forced[0] && z != forced[1]) { c = z; break; }
+      for (int j = 0; j < k; ++j)
+        if (sides[size_t(j)][0] == ring[size_t(c)]) { sources.push_back(r_.face_source[size_t(fv[size_t(j)])]); break; }
+    }
   // The first k - 2 faces of the star take the new triangles; the last two go.
   for (int x : ring) {
     auto& list = vf_[x];
@@ -1069,6 +1082,7 @@ bool Collapser::attempt_removal(int v) {
     const int f = fv[i];
     if (i < k - 2) {
       r_.faces[f] = new_ids_[size_t(i)];
+      if (!sources.empty()) r_.face_source[size_t(f)] = sources[size_t(i)];
       cut_[f] = any_cut;
       for (int x : r_.faces[f]) vf_[x].push_back(f);
       refile(f);
@@ -1385,11 +1399,14 @@ void Collapser::compact() {
   }
   std::vector<std::array<bool, 3>> line(faces.size());
   size_t k = 0;
+  const bool sources = !r_.face_source.empty();
   for (int f = 0; f < int(r_.faces.size()); ++f) {
     if (!alive_[f]) continue;
     for (int z = 0; z < 3; ++z) line[k][z] = line_.count(ekey(r_.faces[f][z], r_.faces[f][(z + 1) % 3])) > 0;
+    if (sources) r_.face_source[k] = r_.face_source[size_t(f)];
     ++k;
   }
+  if (sources) r_.face_source.resize(k);
   r_.vertices = std::move(vertices);
   r_.faces = std::move(faces);
   r_.line_edge = std::move(line);

@@ -267,6 +267,7 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
       line[z] = cl.line_edge[3 * s + z] != 0;
     }
     r.faces.push_back(face);
+    r.face_source.push_back(sub_face[s]);
     cut.push_back(sub_cut[s]);
     r.line_edge.push_back(line);
   }
@@ -363,7 +364,7 @@ Body body_from_mesh(const TriMesh& mesh, const std::string& name) {
   return b;
 }
 
-std::vector<Body> bodies_from_components(const TriMesh& mesh) {
+std::vector<Body> bodies_from_components(const TriMesh& mesh, std::vector<std::vector<int>>* mesh_faces) {
   // Faces connected through shared vertices form one component.
   const int nv = int(mesh.vert.size());
   UnionFind uf(nv);
@@ -373,6 +374,7 @@ std::vector<Body> bodies_from_components(const TriMesh& mesh) {
   }
   std::map<int, int> body_of_root;
   std::vector<Body> bodies;
+  if (mesh_faces) mesh_faces->clear();
   std::vector<int> local(nv, -1);
   for (const auto& f : mesh.face) {
     if (f.IsD()) continue;
@@ -381,7 +383,9 @@ std::vector<Body> bodies_from_components(const TriMesh& mesh) {
     if (added) {
       bodies.emplace_back();
       bodies.back().name = "component " + std::to_string(it->second);
+      if (mesh_faces) mesh_faces->emplace_back();
     }
+    if (mesh_faces) (*mesh_faces)[size_t(it->second)].push_back(int(vcg::tri::Index(mesh, &f)));
     Body& b = bodies[it->second];
     std::array<int, 3> face;
     for (int z = 0; z < 3; ++z) {

@@ -40,6 +40,10 @@ struct Result {
   std::vector<std::array<double, 3>> vertices;
   std::vector<std::array<int, 3>> faces;          ///< outward oriented
   std::vector<std::array<bool, 3>> line_edge;     ///< side z of face f lies on an intersection line
+  /// Per face: the input face it lies in (or, after the sliver step, the one its slot came
+  /// from: within the deviation bound of it), as an index into all bodies' faces in order,
+  /// body 0's first (source_attributes.h maps it back).
+  std::vector<int> face_source;
   std::vector<std::vector<int>> lines;            ///< intersection polylines (vertex indices)
   std::vector<bool> line_closed;
   int bodies = 0;
@@ -68,8 +72,9 @@ Result compute_union(const std::vector<Body>& bodies, const Params& params = {})
 /// A body from a whole mesh.
 Body body_from_mesh(const TriMesh& mesh, const std::string& name);
 
-/// One body per face-connected component of `mesh` (named "component k").
-std::vector<Body> bodies_from_components(const TriMesh& mesh);
+/// One body per face-connected component of `mesh` (named "component k"); `mesh_faces`
+/// (if given) gets, per body, the index in `mesh.face` of each of its faces.
+std::vector<Body> bodies_from_components(const TriMesh& mesh, std::vector<std::vector<int>>* mesh_faces = nullptr);
 
 /// Writes the union into `out` (cleared): faces, and the intersection edges as the
 /// per-face-edge selection (FaceEdgeS).

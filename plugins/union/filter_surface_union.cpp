@@ -2,6 +2,7 @@
 
 #include "common/error_translation.h"
 #include "common/mesh_bridge.h"
+#include "union_attributes.h"
 #include "union/surface_union.h"
 
 #include <QElapsedTimer>
@@ -80,6 +81,18 @@ RichParameterList FilterSurfaceUnionPlugin::initParameterList(const QAction*, co
                          "to be clean (convex bodies cost almost nothing either way)."));
   list.addParam(RichBool("create_lines_layer", false, "Create a layer with the intersection lines",
                          "Add a new layer holding the intersection lines as an edge mesh (polylines)."));
+  // The same names and meaning as MeshLab's own Boolean filters (vertices interpolated here).
+  list.addParam(RichBool("transfer_face_color", false, "Transfer face color",
+                         "Give each face of the union the color of the input face it lies in."));
+  list.addParam(RichBool("transfer_face_quality", false, "Transfer face quality",
+                         "Give each face of the union the quality of the input face it lies in."));
+  list.addParam(RichBool("transfer_vert_color", false, "Transfer vertex color",
+                         "Give each vertex of the union the color of the input at its place: an input "
+                         "vertex's own, or, for intersection points and moved vertices, the colors of the "
+                         "input face's corners weighted by the vertex's barycentric coordinates there."));
+  list.addParam(RichBool("transfer_vert_quality", false, "Transfer vertex quality",
+                         "Give each vertex of the union the quality of the input at its place (interpolated "
+                         "like the vertex color)."));
   return list;
 }
 
@@ -127,6 +140,7 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
 
   if (cb) cb(0, "Collecting bodies");
   std::vector<mr::surface_union::Body> bodies;
+  std::vector<mr::union_plugin::BodySource> sources;  // where each body's faces are in its mesh
   if (source == CONNECTED_COMPONENTS) {
     MeshModel* model = md.mm();
     if (model == nullptr) throw MLException(QString(kName) + ": there is no current mesh");
@@ -134,25 +148,39 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
       throw MLException(QString(kName) + ": the current mesh '" + model->label() + "' has no faces");
     mr::bridge::CoreCopy copy;
     mr::bridge::copy_to_core(model->cm, copy);
-    bodies = mr::surface_union::bodies_from_components(copy.mesh);
+    std::vector<std::vector<int>> core_faces;
+    bodies = mr::surface_union::bodies_from_components(copy.mesh, &core_faces);
+    for (const auto& list : core_faces) {
+      sources.push_back({model, {}});
+      for (int f : list) sources.back().face.push_back(copy.source_face[size_t(f)]);
+    }
   } else {
     for (MeshModel& m : md.meshIterator()) {
       if (!m.isVisible()) continue;
       mr::bridge::CoreCopy copy;
       mr::bridge::copy_to_core(m.cm, copy);
       bodies.push_back(mr::surface_union::body_from_mesh(copy.mesh, m.label().toStdString()));
+      sources.push_back({&m, copy.source_face});  // the body's faces are the copy's, in order
     }
   }
   if (cb) cb(10, "Intersecting, re-triangulating and classifying");
   // Everything is computed before any layer is touched, so an error changes nothing.
   const mr::surface_union::Result r =
       mr::bridge::run_core(kName, [&] { return mr::surface_union::compute_union(bodies, p); });
+  mr::union_plugin::Transfer transfer;
+  transfer.face_color = params.getBool("transfer_face_color");
+  transfer.face_quality = params.getBool("transfer_face_quality");
+  transfer.vertex_color = params.getBool("transfer_vert_color");
+  transfer.vertex_quality = params.getBool("transfer_vert_quality");
+  const auto origins =
+      mr::bridge::run_core(kName, [&] { return mr::union_plugin::find_origins(r, bodies, transfer); });
   if (cb) cb(90, "Writing the union layer");
   MeshModel* layer = md.addNewMesh("", "union", true);
   mr::TriMesh out;
   mr::surface_union::to_tri_mesh(r, out);
   mr::bridge::copy_from_core(out, layer->cm);
   layer->updateBoxAndNormals();
+  mr::union_plugin::transfer_attributes(origins, sources, transfer, *layer);
   if (params.getBool("create_lines_layer")) {
     add_lines_layer(md, r);
     md.setCurrentMesh(layer->id());

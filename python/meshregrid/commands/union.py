@@ -12,8 +12,11 @@ def add_arguments(p):
                    help="every connected component of each input is a body (default: every file is one body)")
     p.add_argument("--sliver-angle", type=float, default=10.0,
                    help="collapse cut faces with an angle below this, degrees (default 10, 0 = off)")
-    p.add_argument("--sliver-max-deviation", type=float, default=1e-4,
-                   help="largest surface move of a collapse, fraction of the diagonal (default 1e-4)")
+    p.add_argument("--sliver-max-deviation", type=float, default=None,
+                   help="how far the sliver step may move the surface, all moves together, fraction of the "
+                        "diagonal (default: the filter's, 2e-3)")
+    p.add_argument("--transfer-attributes", action="store_true",
+                   help="carry the inputs' face and vertex colours and qualities over to the union")
     p.add_argument("--lines", help="also write the intersection lines to this OBJ file (v and l records)")
     p.add_argument("--remesh", action="store_true",
                    help="regrid the union with the advancing front, intersection lines kept as ridges")
@@ -51,7 +54,8 @@ def run(args) -> int:
     result = pipeline_union.union(
         ms, bodies="components" if args.components else "layers", sliver_angle=args.sliver_angle,
         sliver_max_deviation=args.sliver_max_deviation, lines_layer=bool(args.lines), remesh=args.remesh,
-        target_length=args.target_length, target_percent=args.target_percent, ridge_angle=args.ridge_angle)
+        target_length=args.target_length, target_percent=args.target_percent, ridge_angle=args.ridge_angle,
+        transfer_attributes=args.transfer_attributes)
     union_id = result["union_layer"]
     if args.lines:
         write_polylines(ms.mesh(union_id + 1), args.lines)
