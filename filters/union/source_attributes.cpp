@@ -51,7 +51,10 @@ public:
     const BodyStars& stars = *stars_[size_t(start.body)];
     std::array<double, 3> bary{};
     double d = distance(b, start.face, p, bary);
-    for (int steps = 0; steps < kMaxSteps && d > 0; ++steps) {
+    // A point in the face (rounding off it) ends the walk at once: most faces are where
+    // they were cut.
+    const double in_face = 1e-18 * longest_edge_squared(b, start.face);
+    for (int steps = 0; steps < kMaxSteps && d > in_face; ++steps) {
       int best = -1;
       double best_d = d;
       std::array<double, 3> best_bary{};
@@ -76,6 +79,16 @@ public:
 
 private:
   static constexpr int kMaxSteps = 1000;  // (each step gets strictly nearer: a bound, not a limit met)
+  static double longest_edge_squared(const Body& b, int f) {
+    const auto& t = b.faces[size_t(f)];
+    double l = 0;
+    for (int z = 0; z < 3; ++z) {
+      const auto& p = b.vertices[size_t(t[size_t(z)])];
+      const auto& q = b.vertices[size_t(t[size_t((z + 1) % 3)])];
+      l = std::max(l, (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+    }
+    return l;
+  }
   static double distance(const Body& b, int f, const std::array<double, 3>& p, std::array<double, 3>& bary) {
     const auto& t = b.faces[size_t(f)];
     auto pt = [&](int z) {
@@ -110,6 +123,19 @@ std::vector<FaceOrigin> located_faces(const Result& r, const std::vector<Body>& 
 }
 
 }  // namespace
+
+std::vector<int> face_bodies(const Result& r, const std::vector<Body>& bodies) {
+  if (r.face_source.size() != r.faces.size())
+    throw InvalidInput("the union result carries no face sources (it was not made by compute_union)");
+  const std::vector<int> first = face_offsets(bodies);
+  std::vector<int> out(r.faces.size());
+  for (size_t f = 0; f < r.faces.size(); ++f) {
+    const int s = r.face_source[f];
+    if (s < 0 || s >= first.back()) throw InvalidInput("the union result does not come from these bodies");
+    out[f] = origin_of(s, first).body;
+  }
+  return out;
+}
 
 std::vector<FaceOrigin> face_origins(const Result& r, const std::vector<Body>& bodies) {
   Locator locator(bodies);

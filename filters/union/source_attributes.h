@@ -23,6 +23,9 @@ struct PointOrigin {
   std::array<double, 3> weight{1, 0, 0};
 };
 
+/// Per face of `r`: its body (from Result::face_source, without looking for its origin).
+std::vector<int> face_bodies(const Result& r, const std::vector<Body>& bodies);
+
 /// Per face of `r`: the input face of its body nearest to its centroid, found by a walk
 /// over the body's faces from Result::face_source (the face it was cut from: the sliver
 /// step may have moved it a few faces away). `bodies` are the ones compute_union was given.

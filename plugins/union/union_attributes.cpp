@@ -20,7 +20,8 @@ vcg::Color4b weighted(const vcg::Color4b c[3], const std::array<double, 3>& w) {
 Origins find_origins(const surface_union::Result& r, const std::vector<surface_union::Body>& bodies,
                      const Transfer& what) {
   Origins o;
-  o.faces = surface_union::face_origins(r, bodies);
+  o.body = surface_union::face_bodies(r, bodies);
+  if (what.face_color || what.face_quality) o.faces = surface_union::face_origins(r, bodies);
   if (what.vertex_color || what.vertex_quality) o.vertices = surface_union::vertex_origins(r, bodies);
   return o;
 }
@@ -34,7 +35,7 @@ void transfer_attributes(const Origins& origins, const std::vector<BodySource>& 
     return s.mesh->cm.face[size_t(s.face[size_t(o.face)])];
   };
   auto body_of = vcg::tri::Allocator<CMeshO>::GetPerFaceAttribute<Scalarm>(out, "body");
-  for (size_t f = 0; f < faces.size(); ++f) body_of[out.face[f]] = Scalarm(faces[f].body);
+  for (size_t f = 0; f < origins.body.size(); ++f) body_of[out.face[f]] = Scalarm(origins.body[f]);
 
   if (what.face_color) layer.updateDataMask(MeshModel::MM_FACECOLOR);
   if (what.face_quality) layer.updateDataMask(MeshModel::MM_FACEQUALITY);

@@ -21,9 +21,11 @@ struct Transfer {
   bool face_color = false, face_quality = false, vertex_color = false, vertex_quality = false;
 };
 
-/// Where the union's faces (always) and vertices (when a vertex attribute is asked for) lie
-/// on the input: computed before the layer is made, so that a failure changes nothing.
+/// Each face's body, and where the union's faces and vertices lie on the input when a face
+/// or vertex attribute is asked for: computed before the layer is made, so that a failure
+/// changes nothing.
 struct Origins {
+  std::vector<int> body;
   std::vector<surface_union::FaceOrigin> faces;
   std::vector<surface_union::PointOrigin> vertices;
 };

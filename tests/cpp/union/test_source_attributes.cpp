@@ -64,11 +64,13 @@ TEST(SourceAttributes, EveryFaceOfTheExactArrangementLiesInItsSourceFacesPlane) 
     const Result r = unite(bodies, 0);
     ASSERT_EQ(r.face_source.size(), r.faces.size());
     const auto faces = face_origins(r, bodies);
+    const auto body = face_bodies(r, bodies);
     int off_plane = 0, bodies_seen = 0;
     std::vector<char> seen(bodies.size(), 0);
     for (size_t f = 0; f < faces.size(); ++f) {
       ASSERT_GE(faces[f].body, 0);
       ASSERT_LT(faces[f].body, int(bodies.size()));
+      EXPECT_EQ(body[f], faces[f].body);
       for (int v : r.faces[f])  // rounded intersection points lie within rounding of the plane
         if (distance_to_source(bodies, faces[f], r.vertices[size_t(v)]) > 1e-12) ++off_plane;
       if (!seen[size_t(faces[f].body)]) ++bodies_seen;
