@@ -174,3 +174,47 @@ def test_cli_union_transfers_attributes(tmp_path):
     ms.load_new_mesh(str(out))
     colour = ms.current_mesh().face_color_matrix()
     assert {tuple(c) for c in np.round(colour, 6)} == {(1, 0, 0, 1), (0, 0, 1, 1)}
+
+
+def test_face_colours_map_back_through_deleted_faces_of_the_input():
+    """A layer whose first faces were deleted (MeshLab keeps them as deleted elements until
+    compacted): the colours still come from the right faces. Every face of the cube gets its
+    own colour; each union face of the cube must carry the colour of the cube face it lies in."""
+    cube = pymeshlab.MeshSet()
+    cube.create_cube(size=1.0)
+    cv, cf = cube.current_mesh().vertex_matrix(), cube.current_mesh().face_matrix()
+    tv = np.array([[9, 9, 9], [10, 9, 9], [9, 10, 9], [9, 9, 10.0]])
+    tf = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    v = np.vstack([tv, cv])
+    f = np.vstack([tf, cf + len(tv)])
+    colours = np.ones((len(f), 4))
+    colours[len(tf):, 0] = np.arange(len(cf)) / len(cf)
+    colours[len(tf):, 1] = 1 - np.arange(len(cf)) / len(cf)
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(v, f, f_color_matrix=colours))
+    ms.compute_selection_by_condition_per_face(condselect="x0 > 5")
+    ms.meshing_remove_selected_vertices_and_faces()
+    assert ms.current_mesh().face_number() == len(cf)
+    ms.create_sphere(radius=0.5, subdiv=2)
+    ms.compute_matrix_from_translation(axisx=0.5, axisy=0.2)
+    ms.generate_surface_intersection_union(bodies=LAYERS, transfer_face_color=True, sliver_angle=0.0)
+    m = ms.current_mesh()
+    body, got = m.face_custom_scalar_attribute_array("body"), m.face_color_matrix()
+    uv, uf = m.vertex_matrix(), m.face_matrix()
+    centroid = uv[uf].mean(1)
+    tri = cv[cf]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    normal /= np.linalg.norm(normal, axis=1)[:, None]
+    checked = 0
+    for i in np.where(body == 0)[0]:
+        # The cube face containing the centroid: in its plane and inside its three sides.
+        for k in range(len(cf)):
+            if abs((centroid[i] - tri[k, 0]) @ normal[k]) > 1e-12:
+                continue
+            inside = all(np.cross(tri[k, (z + 1) % 3] - tri[k, z], centroid[i] - tri[k, z]) @ normal[k] >= -1e-12
+                         for z in range(3))
+            if inside:
+                assert np.allclose(got[i], colours[len(tf) + k], atol=1 / 255), f"face {i}"
+                checked += 1
+                break
+    assert checked == int((body == 0).sum()) > 0
