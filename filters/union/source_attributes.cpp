@@ -109,7 +109,8 @@ std::array<double, 3> centroid(const Result& r, size_t f) {
   return g;
 }
 
-std::vector<FaceOrigin> located_faces(const Result& r, const std::vector<Body>& bodies, Locator& locator) {
+/// Each face's source, checked against the bodies: the face it was cut from.
+std::vector<FaceOrigin> cut_from(const Result& r, const std::vector<Body>& bodies) {
   if (r.face_source.size() != r.faces.size())
     throw InvalidInput("the union result carries no face sources (it was not made by compute_union)");
   const std::vector<int> first = face_offsets(bodies);
@@ -117,23 +118,23 @@ std::vector<FaceOrigin> located_faces(const Result& r, const std::vector<Body>& 
   for (size_t f = 0; f < r.faces.size(); ++f) {
     const int s = r.face_source[f];
     if (s < 0 || s >= first.back()) throw InvalidInput("the union result does not come from these bodies");
-    out[f] = locator.locate(origin_of(s, first), centroid(r, f)).face;
+    out[f] = origin_of(s, first);
   }
+  return out;
+}
+
+std::vector<FaceOrigin> located_faces(const Result& r, const std::vector<Body>& bodies, Locator& locator) {
+  std::vector<FaceOrigin> out = cut_from(r, bodies);
+  for (size_t f = 0; f < r.faces.size(); ++f) out[f] = locator.locate(out[f], centroid(r, f)).face;
   return out;
 }
 
 }  // namespace
 
 std::vector<int> face_bodies(const Result& r, const std::vector<Body>& bodies) {
-  if (r.face_source.size() != r.faces.size())
-    throw InvalidInput("the union result carries no face sources (it was not made by compute_union)");
-  const std::vector<int> first = face_offsets(bodies);
-  std::vector<int> out(r.faces.size());
-  for (size_t f = 0; f < r.faces.size(); ++f) {
-    const int s = r.face_source[f];
-    if (s < 0 || s >= first.back()) throw InvalidInput("the union result does not come from these bodies");
-    out[f] = origin_of(s, first).body;
-  }
+  const std::vector<FaceOrigin> faces = cut_from(r, bodies);
+  std::vector<int> out(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) out[f] = faces[f].body;
   return out;
 }
 

@@ -140,7 +140,9 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
 
   if (cb) cb(0, "Collecting bodies");
   std::vector<mr::surface_union::Body> bodies;
-  std::vector<mr::union_plugin::BodySource> sources;  // where each body's faces are in its mesh
+  // Where each body's faces are in its mesh. (The document keeps its meshes in a list:
+  // adding the union layer leaves these pointers valid.)
+  std::vector<mr::union_plugin::BodySource> sources;
   if (source == CONNECTED_COMPONENTS) {
     MeshModel* model = md.mm();
     if (model == nullptr) throw MLException(QString(kName) + ": there is no current mesh");
