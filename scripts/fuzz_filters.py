@@ -147,7 +147,9 @@ elif which == 1:
         gradation=float(value([1.3, 2], [0.5, 1e9])), **lengths(target_length=[0.5, 1, 5], min_line_length=[0.1, 1, 5]))
 elif which == 2:
     name, kw = "generate_surface_intersection_union", dict(bodies=int(pick(0, 1)),
-                                                              sliver_angle=float(value([0, 10, 45], [-5, 90])))
+                                                              sliver_angle=float(value([0, 10, 45], [-5, 90])),
+                                                              transfer_face_color=bool(pick(True, False)),
+                                                              transfer_vert_quality=bool(pick(True, False)))
 elif which == 3:
     name, kw = "meshing_heal_patch_gaps", dict(patch_source=int(pick(0, 1)),
                                                feature_angle=float(value([1, 30], [-1, 0, 180])),

@@ -20,10 +20,7 @@ public:
   ClusterMerger(Result& r, std::vector<char>& cut) : r_(r), cut_(cut) {}
 
   int run() {
-    double largest = 0;
-    for (const auto& p : r_.vertices)
-      for (double x : p) largest = std::max(largest, std::fabs(x));
-    tiny_ = 4 * (std::nextafter(largest, std::numeric_limits<double>::infinity()) - largest);
+    tiny_ = rounding_slack(r_);
     // Most unions have no such edge: the stars are built only then.
     if (!(tiny_ > 0) || close_edges().empty()) return 0;
     alive_.assign(r_.faces.size(), 1);
@@ -319,5 +316,12 @@ private:
 }  // namespace
 
 int merge_rounded_together(Result& r, std::vector<char>& cut) { return ClusterMerger(r, cut).run(); }
+
+double rounding_slack(const Result& r) {
+  double largest = 0;
+  for (const auto& p : r.vertices)
+    for (double x : p) largest = std::max(largest, std::fabs(x));
+  return 4 * (std::nextafter(largest, std::numeric_limits<double>::infinity()) - largest);
+}
 
 }  // namespace mr::surface_union

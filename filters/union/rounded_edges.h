@@ -21,4 +21,8 @@ namespace mr::surface_union {
 /// away; an edge whose ends fail the checks is left as it is.
 int merge_rounded_together(Result& r, std::vector<char>& cut);
 
+/// 4 units in the last place of the largest coordinate of `r`: how far apart rounding to
+/// doubles can put points that the exact union has at one place or on one line.
+double rounding_slack(const Result& r);
+
 }  // namespace mr::surface_union

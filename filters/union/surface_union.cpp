@@ -10,6 +10,7 @@
 #include "union/doubled_edges.h"
 #include "union/face_triangulation.h"
 #include "union/outside_surface.h"
+#include "union/rounded_caps.h"
 #include "union/rounded_edges.h"
 #include "union/sliver_collapse.h"
 #include "union/triangle_intersection.h"
@@ -287,6 +288,9 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
     }
   }
   r.rounded_edges_merged = merge_rounded_together(r, cut);
+  int flipped = 0;
+  r.rounded_caps_split = split_rounded_caps(r, cut, &flipped);
+  if (flipped > 0) r.rounded_edges_merged += merge_rounded_together(r, cut);
   r.time_classify_ms = ms_since(t);
 
   // Nothing above is needed any more. The sliver step runs on this thread; the temporaries

@@ -58,6 +58,7 @@ struct Result {
   int slivers_collapsed = 0;
   int orientation_conflicts = 0;                  ///< fill steps into a same-oriented face (should be 0)
   int doubled_edges_split = 0;                    ///< edges of two touching sheets split apart (doubled_edges.h)
+  int rounded_caps_split = 0;                     ///< faces rounding flattened onto a side, removed (rounded_caps.h)
   int rounded_edges_merged = 0;                   ///< vertices merged away where rounding left edges without length or next to none (rounded_edges.h)
   double min_angle_deg = 0;                       ///< smallest angle in the output
   double time_pairs_ms = 0, time_intersect_ms = 0, time_retriangulate_ms = 0, time_classify_ms = 0,
