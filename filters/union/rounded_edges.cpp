@@ -218,7 +218,16 @@ private:
       const int before = orient2d(old_q[0].data(), old_q[1].data(), old_q[2].data(), a, b);
       if (before == 0 || orient2d(q[0].data(), q[1].data(), q[2].data(), a, b) != before) return false;
       // Folds: across each side (x, y), the neighbour's third corner coplanar with the
-      // face and on the side of xy where the face's own third corner is.
+      // face and on the side of xy where the face's own third corner is. One the face had
+      // before the merge, across the same side, does not refuse it (nearly coincident
+      // sheets have such pairs where rounding put their points on one lattice): the merge
+      // adds no fold.
+      auto folds = [&](int x, int y, int own, int c) {
+        if (orient3d(at(x).data(), at(y).data(), at(own).data(), at(c).data()) != 0) return false;
+        return orient2d(at(x).data(), at(y).data(), at(own).data(), a, b) *
+                   orient2d(at(x).data(), at(y).data(), at(c).data(), a, b) >= 0;
+      };
+      const auto& was = old_[size_t(i)];
       for (int z = 0; z < 3; ++z) {
         const int x = t[size_t(z)], y = t[size_t((z + 1) % 3)], own = t[size_t((z + 2) % 3)];
         for (int g : vf_[size_t(x)]) {
@@ -227,9 +236,7 @@ private:
           for (int v : r_.faces[size_t(g)])
             if (v != x && v != y) c = v;
           if (c < 0) return false;  // (a face with a repeated corner: not one this step makes)
-          if (orient3d(at(x).data(), at(y).data(), at(own).data(), at(c).data()) != 0) continue;
-          if (orient2d(at(x).data(), at(y).data(), at(own).data(), a, b) *
-                  orient2d(at(x).data(), at(y).data(), at(c).data(), a, b) >= 0)
+          if (folds(x, y, own, c) && !folds(was[size_t(z)], was[size_t((z + 1) % 3)], was[size_t((z + 2) % 3)], c))
             return false;
         }
       }
