@@ -43,10 +43,7 @@ public:
 
 private:
   const V3& at(int v) const { return r_.vertices[size_t(v)]; }
-  bool close(int u, int w) const {
-    const V3 &a = at(u), &b = at(w);
-    return std::fabs(a[0] - b[0]) <= tiny_ && std::fabs(a[1] - b[1]) <= tiny_ && std::fabs(a[2] - b[2]) <= tiny_;
-  }
+  bool close(int u, int w) const { return within_slack(at(u), at(w), tiny_); }
   /// Where along side (a, b) the point c projects, as a fraction of the side.
   double along(int a, int b, int c) const {
     const V3 ab = sub3(at(b), at(a));

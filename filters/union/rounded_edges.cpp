@@ -53,10 +53,7 @@ public:
 private:
   const V3& at(int v) const { return r_.vertices[size_t(v)]; }
   /// Ends within tiny_ of each other in every coordinate.
-  bool close(int u, int w) const {
-    const V3 &a = at(u), &b = at(w);
-    return std::fabs(a[0] - b[0]) <= tiny_ && std::fabs(a[1] - b[1]) <= tiny_ && std::fabs(a[2] - b[2]) <= tiny_;
-  }
+  bool close(int u, int w) const { return within_slack(at(u), at(w), tiny_); }
   /// Edges of live cut faces whose ends are close: (length, lower end, higher end), sorted.
   /// (One end at least is a crossing, so the edge's faces are cut faces.)
   std::vector<std::tuple<double, int, int>> close_edges() const {

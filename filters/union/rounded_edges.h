@@ -7,6 +7,9 @@
 
 #include "union/surface_union.h"
 
+#include <array>
+#include <cmath>
+
 namespace mr::surface_union {
 
 /// Merges the two ends of edges that rounding left within 4 units in the last place of the
@@ -24,5 +27,10 @@ int merge_rounded_together(Result& r, std::vector<char>& cut);
 /// 4 units in the last place of the largest coordinate of `r`: how far apart rounding to
 /// doubles can put points that the exact union has at one place or on one line.
 double rounding_slack(const Result& r);
+
+/// a and b are within `slack` of each other in every coordinate.
+inline bool within_slack(const std::array<double, 3>& a, const std::array<double, 3>& b, double slack) {
+  return std::fabs(a[0] - b[0]) <= slack && std::fabs(a[1] - b[1]) <= slack && std::fabs(a[2] - b[2]) <= slack;
+}
 
 }  // namespace mr::surface_union

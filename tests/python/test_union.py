@@ -740,23 +740,34 @@ def test_bug_crossings_rounded_to_one_place_left_faces_with_coincident_corners(s
 
 
 def _nearly_coincident_blobs(seed):
-    """fuzz_union.py --nonconvex, kind 2: a noisy blob and copies of it scaled about one of
-    its vertices or shifted on a grid (faces of the copies nearly coincide)."""
-    rng = np.random.default_rng(seed)
-    ms = pymeshlab.MeshSet()
-    ms.create_sphere(radius=0.5, subdiv=2)
-    v0, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
-    scale = rng.choice([0.5, 1.0])  # (drawn before the noise, as there)
-    v = v0 * (1 + rng.uniform(-0.3, 0.3, (len(v0), 1))) * 2 * scale
-    v = v + np.round(rng.random(3), 1)
-    parts = [(v, f)]
-    for _ in range(rng.integers(1, 4)):
-        if rng.random() < 0.5:
-            p = v[rng.integers(len(v))]
-            parts.append(((v - p) * rng.choice([0.5, 0.75, 1.5]) + p, f))
-        else:
-            parts.append((v + rng.integers(-2, 3, 3) * 0.125, f))
+    """fuzz_union.py --nonconvex's case for `seed` (kind 2 for these seeds: a noisy blob and
+    copies of it scaled about one of its vertices or shifted on a grid)."""
+    import sys
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts"))
+    import fuzz_union
+    _, sphere, _ = fuzz_union.shapes()
+    kind, parts = fuzz_union.nonconvex_case(seed, sphere, None)
+    assert kind == 2
     return parts
+
+
+def _assert_rounding_left_no_fault(ms, ref, sliver_angle):
+    """The union layer has no face without area or with two corners at one place, no face
+    that MeshLab flags and exact rationals confirm, is closed and manifold, and has the
+    reference volume."""
+    m = ms.current_mesh()
+    v, f = m.vertex_matrix(), m.face_matrix()
+    area = np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1)
+    assert (area == 0).sum() == 0
+    fresh = pymeshlab.MeshSet()
+    fresh.add_mesh(pymeshlab.Mesh(v, f))
+    fresh.compute_selection_by_self_intersections_per_face()
+    flagged = np.nonzero(fresh.current_mesh().face_selection_array())[0]
+    assert len(exactly_intersecting_faces(v, f, flagged)) == 0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    rtol = IMPROVED_VOLUME_RTOL if sliver_angle > 0 else EXACT_VOLUME_RTOL
+    assert ms.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=rtol)
 
 
 @pytest.mark.parametrize("seed", [104897, 105128])
@@ -775,19 +786,8 @@ def test_bug_caps_rounded_onto_their_side_crossed_their_neighbours(seed, sliver_
     ref = reference([ms.mesh(i) for i in range(len(parts))])
     r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle)
     assert r["rounded_caps_split"] > 0
+    _assert_rounding_left_no_fault(ms, ref, sliver_angle)
     m = ms.current_mesh()
-    v, f = m.vertex_matrix(), m.face_matrix()
-    for z in range(3):
-        assert not np.all(v[f[:, z]] == v[f[:, (z + 1) % 3]], axis=1).any()
-    fresh = pymeshlab.MeshSet()
-    fresh.add_mesh(pymeshlab.Mesh(v, f))
-    fresh.compute_selection_by_self_intersections_per_face()
-    flagged = np.nonzero(fresh.current_mesh().face_selection_array())[0]
-    assert len(exactly_intersecting_faces(v, f, flagged)) == 0
-    topo = ms.get_topological_measures()
-    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
-    rtol = IMPROVED_VOLUME_RTOL if sliver_angle > 0 else EXACT_VOLUME_RTOL
-    assert ms.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=rtol)
     assert angles(m).max() < 179.9  # (was 180 up to rounding: the caps)
 
 
@@ -808,8 +808,8 @@ def test_bug_rounded_clusters_on_nearly_coincident_sheets_left_faces_without_are
     # is symmetric). Rounding left 6,900 ends of edges within units in the last place; 660 of
     # the merges were refused because a face at the cluster lay folded on a coplanar
     # neighbour already, before the merge. 311 faces without area were left (209 after the
-    # sliver step, 220 before the cap repair), and with the sliver step 5 faces crossed. A fold the face had before no
-    # longer refuses a merge (rounded_edges.cpp): none is left.
+    # sliver step, 220 before the cap repair), and with the sliver step 5 faces crossed. A
+    # fold the face had before no longer refuses a merge (rounded_edges.cpp): none is left.
     ms = load("cad/fandisk.obj")
     v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
     for turns in ((0, 3, 2), (2, 3, 0)):
@@ -817,18 +817,7 @@ def test_bug_rounded_clusters_on_nearly_coincident_sheets_left_faces_without_are
     ref = reference([ms.mesh(i) for i in range(3)])
     r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle)
     assert r["rounded_edges_merged"] > 6000
+    _assert_rounding_left_no_fault(ms, ref, sliver_angle)
     m = ms.current_mesh()
-    uv, uf = m.vertex_matrix(), m.face_matrix()
-    area = np.linalg.norm(np.cross(uv[uf[:, 1]] - uv[uf[:, 0]], uv[uf[:, 2]] - uv[uf[:, 0]]), axis=1)
-    assert (area == 0).sum() == 0
-    fresh = pymeshlab.MeshSet()
-    fresh.add_mesh(pymeshlab.Mesh(uv, uf))
-    fresh.compute_selection_by_self_intersections_per_face()
-    flagged = np.nonzero(fresh.current_mesh().face_selection_array())[0]
-    assert len(exactly_intersecting_faces(uv, uf, flagged)) == 0
-    topo = ms.get_topological_measures()
-    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
-    rtol = IMPROVED_VOLUME_RTOL if sliver_angle > 0 else EXACT_VOLUME_RTOL
-    assert ms.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=rtol)
     if sliver_angle > 0:
         assert angles(m).min() > 0.5  # 0.84 measured (0 before)
