@@ -183,3 +183,29 @@ TEST(PatchHealing, BadInputIsRejectedWithAClearMessage) {
   cube.vert[0].P()[1] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(healing::heal(cube, {}, with_tolerance(0.01)), InvalidInput);
 }
+
+TEST(PatchHealing, LongBorderEdgesAgainstATinyToleranceStayCheap) {
+  // Found by fuzzing (fuzz_filters.py seed 863): 30 triangles of random points in the unit
+  // cube, tolerance 1e-4 of the diagonal. Each open edge's whole box went into a grid of
+  // tolerance-sized cells (millions of cells per edge: 298 s); segments are now filed in
+  // pieces of a cell. The soup has nothing to heal: every edge stays open, no pair, no move.
+  std::vector<Point3> points;
+  std::vector<std::array<int, 3>> faces;
+  uint32_t state = 863;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) / double(1u << 24);
+  };
+  for (int f = 0; f < 30; ++f) {
+    for (int k = 0; k < 3; ++k) points.emplace_back(next(), next(), next());
+    faces.push_back({3 * f, 3 * f + 1, 3 * f + 2});
+  }
+  healing::Params p;
+  p.vertex_tolerance = 1.7e-4;
+  p.edge_tolerance = 1.7e-3;
+  const auto r = healing::heal(points, faces, {}, p);
+  EXPECT_EQ(r.faces.size(), 30u);
+  EXPECT_EQ(r.borders_paired, 0);
+  EXPECT_EQ(r.vertices_moved, 0);
+  EXPECT_EQ(r.boundary_edges_after, 90);
+}
