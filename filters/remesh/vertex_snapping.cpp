@@ -73,10 +73,11 @@ std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& loc
   };
 
   std::vector<char> moved(out.points.size(), 0);
+
   for (const auto& [ratio, v] : far) {
     const Point3& target = input.points[v];
     const double h = size.at_vertex(v);
-    const double before_deviation = deviation(target, h);  // earlier snaps may have fixed it
+    const double before_deviation = deviation(target, h, params.min_deviation * h);  // earlier snaps may have fixed it
     if (!(before_deviation > params.min_deviation * h)) continue;
     // Only vertices inside one patch (and on a face: scans carry unused points): a free point
     // never goes onto a feature line.
@@ -101,10 +102,8 @@ std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& loc
         old_min = std::min(old_min, min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
         old_normals.push_back(unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
       }
-      const std::vector<int> neighbours = around(q);
-      std::vector<double> before, gaps_before;
-      for (int u : neighbours) before.push_back(deviation(input.points[u], size.at_vertex(u)));
-      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1]; ++k) gaps_before.push_back(face_gap(out_rings.item[k]));
+      // The faces around q first (cheap, and where most candidates fail), then what the move
+      // does to the input vertices nearby, measured before and after it.
       const Point3 old = out.points[q];
       out.points[q] = target;
       bool ok = true;
@@ -114,12 +113,24 @@ std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& loc
         ok = n * old_normals[k - out_rings.begin[q]] >= 0.5 &&
              min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]) >= std::min(old_min, params.min_angle_deg * kDeg);
       }
+      out.points[q] = old;
+      if (!ok) continue;
+      const std::vector<int> neighbours = around(q);
+      std::vector<double> before, gaps_before;
+      // (Only compared with the threshold and kept if larger: a search may stop within it.
+      // Likewise after the move, within the limit. Each vertex then looks at a face or two.)
+      for (int u : neighbours) {
+        const double threshold = params.min_deviation * size.at_vertex(u);
+        before.push_back(std::max(deviation(input.points[u], size.at_vertex(u), threshold), threshold));
+      }
+      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1]; ++k) gaps_before.push_back(face_gap(out_rings.item[k]));
+      out.points[q] = target;
       // Nothing nearby may end up beyond the threshold that was within it (or farther than it was).
       for (size_t k = 0; k < neighbours.size() && ok; ++k) {
         const int u = neighbours[k];
         if (u == v) continue;
-        const double limit = std::max(before[k], params.min_deviation * size.at_vertex(u));
-        ok = deviation(input.points[u], size.at_vertex(u)) <= limit * (1 + 1e-9);
+        const double limit = before[k] * (1 + 1e-9);
+        ok = deviation(input.points[u], size.at_vertex(u), limit) <= limit;
       }
       for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1] && ok; ++k)
         ok = face_gap(out_rings.item[k]) <= std::max(gaps_before[k - out_rings.begin[q]], params.min_deviation * h) * (1 + 1e-9);
