@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "common/flat_index_map.h"
+#include "common/parallel_for.h"
 #include "union/exact.h"
 #include "union/face_clearance.h"
 #include "union/face_tree.h"
@@ -50,15 +51,41 @@ inline bool boxes_apart(const V3& alo, const V3& ahi, const V3& blo, const V3& b
 inline bool has_corner(const std::array<int, 3>& t, int x) { return t[0] == x || t[1] == x || t[2] == x; }
 
 
+/// The surface as the cut left it, in one tree or two (two halves of it, overlapping).
+struct CutSurface {
+  const FaceTree* first = nullptr;
+  const FaceTree* second = nullptr;
+  /// FaceTree::distance's answer over both.
+  double distance(const V3& p, double enough, double limit, FaceTree::Recent* recent) const {
+    const double d = first->distance(p, enough, limit, recent);
+    if (!second || d <= enough) return d;
+    return std::min(d, second->distance(p, enough, limit, nullptr));
+  }
+};
+
+/// What bounds the moves, measured on the whole surface (a part's own would differ).
+struct Limits {
+  double max_dev = 0;        // absolute: each move's deviation bound
+  double volume_budget = 0;  // absolute: the total volume change the moves may make
+  double volume = 0;         // |volume| of the whole surface
+};
+
+/// Where a collapser may change faces: those whose extent along `axis` lies strictly
+/// inside (lo, hi), before and after the change. Two collapsers whose slabs are apart
+/// change faces that cannot meet, and neither reads what the other changes.
+struct Slab {
+  int axis = -1;  // -1: everywhere
+  double lo = -HUGE_VAL, hi = HUGE_VAL;
+};
+
 class Collapser {
 public:
-  Collapser(Result& r, const std::vector<char>& cut, double max_dev, double max_volume_change, SideWorker* helper)
+  Collapser(Result& r, const std::vector<char>& cut, const Limits& limits, SideWorker* helper,
+            const CutSurface& cut_surface, Slab slab = {})
       : helper_(helper), r_(r), alive_(r.faces.size(), 1), cut_(cut), vf_(r.vertices.size()), grid_(r.vertices, r.faces),
-        new_mark_(r.faces.size(), 0), angle_(r.faces.size(), -1) {
-    double volume = 0;
-    for (const auto& t : r.faces) volume += det(P(t[0]), P(t[1]), P(t[2])) / 6;
-    volume_budget_ = max_volume_change * std::fabs(volume);
-    budget_scale_ = std::fabs(volume);
+        cut_surface_(cut_surface), slab_(slab), new_mark_(r.faces.size(), 0), angle_(r.faces.size(), -1) {
+    volume_budget_ = limits.volume_budget;
+    budget_scale_ = limits.volume;
     {  // Each star's list allocated once at its size (and a little room for collapses).
       std::vector<int> valence(r.vertices.size(), 0);
       for (const auto& t : r.faces)
@@ -67,10 +94,7 @@ public:
     }
     for (int f = 0; f < int(r.faces.size()); ++f)
       for (int v : r.faces[f]) vf_[v].push_back(f);
-    V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
-    for (const auto& p : r.vertices)
-      for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }
-    max_dev_ = max_dev * norm(sub3(hi, lo));
+    max_dev_ = limits.max_dev;
     position_index_.reserve(r.vertices.size());
     for (const V3& p : r.vertices) ++vertices_at(p);
     // Line edges and degrees.
@@ -81,11 +105,17 @@ public:
     for (const auto& e : line_) { ++line_degree_[e.first]; ++line_degree_[e.second]; }
   }
 
-  /// The tree over the cut's surface (faces_near_cut), built beside the constructor.
-  void take_cut_surface(FaceTree tree) { cut_surface_ = std::move(tree); }
-  int run(double threshold_rad);
-  void run_passes(double threshold_rad);
+  /// `seed` (per vertex, or null: all): the first pass of each round only treats slivers
+  /// at these vertices. `cut_distance` (per face, or null: 0): bounds on the faces'
+  /// distances from the cut's surface that earlier moves left.
+  int run(double threshold_rad, const std::vector<char>* seed = nullptr, const std::vector<double>* cut_distance = nullptr);
+  void run_passes(double threshold_rad, const std::vector<char>* seed);
   void compact();
+  /// After run(), without compacting: the faces as they are (dead ones marked), their
+  /// line sides in r.line_edge and cut marks in `cut`, distances in `cut_distance`, the
+  /// vertices whose moves the slab refused in `deferred`, and the volume still left.
+  double hand_over(std::vector<char>& alive, std::vector<char>& cut, std::vector<double>& cut_distance,
+                   std::vector<char>& deferred);
 
 private:
   static std::pair<int, int> ekey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
@@ -255,6 +285,40 @@ private:
     }
     return false;
   }
+  /// Face f lies strictly inside the slab.
+  bool in_slab(int f) const {
+    if (slab_.axis < 0) return true;
+    const auto& t = r_.faces[f];
+    for (int x : t) {
+      const double c = r_.vertices[x][slab_.axis];
+      if (!(c > slab_.lo && c < slab_.hi)) return false;
+    }
+    return true;
+  }
+  /// Every live face at x lies inside the slab: x may move or go. Otherwise x waits for
+  /// the run over the whole surface (deferred).
+  bool star_in_slab(int x) {
+    if (slab_.axis < 0) return true;
+    for (int f : vf_[x])
+      if (alive_[f] && !in_slab(f)) return defer(x);
+    return true;
+  }
+  /// The proposed faces lie inside the slab.
+  bool proposed_in_slab() {
+    if (slab_.axis < 0) return true;
+    for (const auto& q : new_pos_)
+      for (const V3& p : q)
+        if (!(p[slab_.axis] > slab_.lo && p[slab_.axis] < slab_.hi)) {
+          for (int f : replaced_) for (int y : r_.faces[f]) defer(y);
+          return false;
+        }
+    return true;
+  }
+  bool defer(int x) {
+    if (deferred_.empty()) deferred_.assign(r_.vertices.size(), 0);
+    deferred_[size_t(x)] = 1;
+    return false;
+  }
   bool edge_exists(int a, int b) const {
     for (int f : vf_[a])
       if (alive_[f] && has_corner(r_.faces[f], b)) return true;
@@ -368,7 +432,9 @@ private:
   // The surface as the cut left it: moves one after another must not take the surface
   // further from it than the deviation bound (each alone is within it). Over the faces
   // within two rings of a cut face, the only ones moves come near.
-  FaceTree cut_surface_;
+  CutSurface cut_surface_;  // shared, read only
+  Slab slab_;
+  std::vector<char> deferred_;  // per vertex (empty: none): a move there left the slab
   /// At the step's start: the faces' distances from the cut's surface (0) and the
   /// touching vertices.
   void keep_cut_surface();
@@ -654,6 +720,7 @@ bool Collapser::cover_unchanged(int gone, int gone2) {
 
 bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   if (collapse_still_refused(v, w)) return false;
+  if (!star_in_slab(v) || !star_in_slab(w)) return false;
   // Every refusal up to the crossing check is remembered (see collapse_still_refused).
   auto refuse = [&] {
     collapse_refused_at_[collapse_key(v, w)] = clock_;
@@ -817,6 +884,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
   if (moved)
     for (int f : fw)
       if (!has_corner(r_.faces[f], v)) propose(f, w, w, target);
+  if (!proposed_in_slab()) return false;
   if (!cover_unchanged(v, moved ? w : -1)) {
     if (replaces_touching_face() || !near_and_clear(std::max(norm(sub3(target, P(v))), norm(p)))) return false;
     keep_cut_distance();
@@ -882,6 +950,10 @@ bool Collapser::attempt_flip(int f, int z) {
       for (int y = 0; y < 3; ++y)
         if (r_.faces[h][y] == v && r_.faces[h][(y + 1) % 3] == u) g = h;
   if (g < 0) return false;
+  if (!in_slab(f) || !in_slab(g)) {  // (the new faces lie within the two old ones)
+    for (int h : {f, g}) for (int y : r_.faces[h]) defer(y);
+    return false;
+  }
   int d = -1;
   for (int x : r_.faces[g])
     if (x != u && x != v) d = x;
@@ -969,6 +1041,7 @@ bool Collapser::try_junction_slide(int c) {
 bool Collapser::attempt_removal(int v) {
   const int ld = line_degree_[v];
   if (ld != 0 && ld != 2) return false;
+  if (!star_in_slab(v)) return false;  // (the new faces lie within the old star)
   // Scratch members: this runs for every sliver corner, pass after pass.
   std::vector<int>& fv = removal_faces_;
   live_faces(v, fv);
@@ -1112,7 +1185,7 @@ bool Collapser::attempt_removal(int v) {
 }
 
 bool Collapser::attempt_slide_on_line(int x) {
-  if (line_degree_[x] != 2) return false;
+  if (line_degree_[x] != 2 || !star_in_slab(x)) return false;
   std::vector<int>& fx = slide_faces_;  // (scratch: tried for every line vertex, pass after pass)
   live_faces(x, fx);
   if (star_unchanged_since(slide_refused_at_[x], x, fx)) return false;
@@ -1200,7 +1273,7 @@ bool Collapser::attempt_slide_on_line(int x) {
 }
 
 bool Collapser::attempt_relocation(int x) {
-  if (line_degree_[x] > 0) return false;
+  if (line_degree_[x] > 0 || !star_in_slab(x)) return false;
   std::vector<int>& fx = scratch_fx_;
   live_faces(x, fx);
   if (fx.empty()) return false;
@@ -1250,6 +1323,7 @@ bool Collapser::attempt_relocation(int x) {
 bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
   start_move();
   for (int f : fx) propose(f, x, x, at);
+  if (!proposed_in_slab()) return false;
   // Every point of the faces moves at most as far as x (a slide along a line may move
   // further than the bound: then the patches are compared, unless they cover the same).
   if (!cover_unchanged(x)) {
@@ -1266,7 +1340,7 @@ bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
 }
 
 bool Collapser::plan_compensation(int x, double dv6, V3& moved) {
-  if (line_degree_[x] > 0) return false;
+  if (line_degree_[x] > 0 || !star_in_slab(x)) return false;
   std::vector<int>& fx = scratch_fx_;
   live_faces(x, fx);
   const V3 o = P(x);
@@ -1298,7 +1372,7 @@ bool Collapser::compensate(int x, double dv6) {
   return plan_compensation(x, dv6, moved) && move_vertex(x, scratch_fx_, moved);
 }
 
-int Collapser::run(double threshold) {
+int Collapser::run(double threshold, const std::vector<char>* seed, const std::vector<double>* cut_distance) {
   threshold_ = threshold;
   // Two rounds: first only moves that give the volume back (a budget of rounding), so
   // the budget is not spent on the worst slivers while cheaper fixes exist; then the rest.
@@ -1306,6 +1380,7 @@ int Collapser::run(double threshold) {
   const double rounding = std::min(budget, 1e-12 * budget_scale_);
   changed_at_.assign(r_.vertices.size(), 0);
   keep_cut_surface();
+  if (cut_distance) cut_distance_ = *cut_distance;
   flip_refused_now_.assign(3 * r_.faces.size(), -1);
   removal_refused_now_.assign(r_.vertices.size(), -1);
   slide_refused_now_.assign(r_.vertices.size(), -1);
@@ -1317,13 +1392,25 @@ int Collapser::run(double threshold) {
     collapse_refused_at_.clear();
     if (round == 0) volume_budget_ = rounding;
     else volume_budget_ = budget - (rounding - volume_budget_);
-    run_passes(threshold);
+    run_passes(threshold, seed);
   }
   return collapses_;
 }
 
-void Collapser::run_passes(double threshold) {
-  changed_.assign(r_.vertices.size(), 1);
+double Collapser::hand_over(std::vector<char>& alive, std::vector<char>& cut, std::vector<double>& cut_distance,
+                            std::vector<char>& deferred) {
+  for (int f = 0; f < int(r_.faces.size()); ++f)
+    for (int z = 0; z < 3; ++z) r_.line_edge[f][z] = alive_[f] && line_.count(ekey(r_.faces[f][z], r_.faces[f][(z + 1) % 3])) > 0;
+  alive = alive_;
+  cut = cut_;
+  cut_distance = cut_distance_;
+  deferred = deferred_.empty() ? std::vector<char>(r_.vertices.size(), 0) : deferred_;
+  return volume_budget_;
+}
+
+void Collapser::run_passes(double threshold, const std::vector<char>* seed) {
+  if (seed) changed_ = *seed;
+  else changed_.assign(r_.vertices.size(), 1);
   for (int pass = 0; pass < 10; ++pass) {
     // After the first pass only slivers whose neighbourhood changed can have new options.
     std::vector<char> changed;
@@ -1333,7 +1420,7 @@ void Collapser::run_passes(double threshold) {
     for (int f = 0; f < int(r_.faces.size()); ++f)
       if (alive_[f] && cut_[f]) {
         const auto& t = r_.faces[f];
-        if (pass > 0 && !changed[t[0]] && !changed[t[1]] && !changed[t[2]]) continue;
+        if ((pass > 0 || seed) && !changed[t[0]] && !changed[t[1]] && !changed[t[2]]) continue;
         const double a = min_angle(f);
         if (a < threshold) bad.push_back({a, f});
       }
@@ -1342,7 +1429,7 @@ void Collapser::run_passes(double threshold) {
     for (const auto& [a0, f] : bad) {
       if (!alive_[f] || min_angle(f) >= threshold) continue;
       const auto t = r_.faces[f];
-      if (pass > 0 && !changed[t[0]] && !changed[t[1]] && !changed[t[2]]) continue;
+      if ((pass > 0 || seed) && !changed[t[0]] && !changed[t[1]] && !changed[t[2]]) continue;
       // Edges by length, shortest first; each tried in both directions. A cap (one
       // large angle) is first flipped across its longest edge, which moves nothing.
       std::array<std::pair<double, int>, 3> edges;
@@ -1420,14 +1507,211 @@ double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vec
   return best;
 }
 
+namespace {
+
+// Below this many slivers one collapser treats the whole surface: the parts' setup and
+// the run along their border would cost more than the second thread saves.
+constexpr size_t kMinSliversForParts = 4000;
+
+Limits limits_of(const Result& r, double max_deviation, double max_volume_change) {
+  double volume = 0;
+  for (const auto& t : r.faces) volume += dot(r.vertices[t[0]], cross(r.vertices[t[1]], r.vertices[t[2]])) / 6;
+  V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
+  for (const auto& p : r.vertices)
+    for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }
+  return {max_deviation * norm(sub3(hi, lo)), max_volume_change * std::fabs(volume), std::fabs(volume)};
+}
+
+/// A slab's faces and every face reaching into it, with the vertices they use, and
+/// what its collapser left.
+struct Part {
+  Slab slab;
+  Result r;
+  std::vector<char> cut;
+  std::vector<int> face_of, vertex_of;  // local index -> the whole surface's
+  std::vector<char> alive, deferred;
+  std::vector<double> cut_distance;
+  double budget_left = 0;
+  int moves = 0;
+};
+
+bool reaches_into(const Result& r, int f, const Slab& s) {
+  double mn = HUGE_VAL, mx = -HUGE_VAL;
+  for (int x : r.faces[f]) {
+    mn = std::min(mn, r.vertices[x][s.axis]);
+    mx = std::max(mx, r.vertices[x][s.axis]);
+  }
+  return mn < s.hi && mx > s.lo;
+}
+
+void extract(const Result& r, const std::vector<char>& cut, Part& p) {
+  std::vector<int> local(r.vertices.size(), -1);
+  for (int f = 0; f < int(r.faces.size()); ++f) {
+    if (!reaches_into(r, f, p.slab)) continue;
+    std::array<int, 3> t;
+    for (int z = 0; z < 3; ++z) {
+      int& l = local[r.faces[f][z]];
+      if (l < 0) {
+        l = int(p.vertex_of.size());
+        p.vertex_of.push_back(r.faces[f][z]);
+        p.r.vertices.push_back(r.vertices[r.faces[f][z]]);
+      }
+      t[z] = l;
+    }
+    p.face_of.push_back(f);
+    p.r.faces.push_back(t);
+    p.r.line_edge.push_back(r.line_edge[f]);
+    if (!r.face_source.empty()) p.r.face_source.push_back(r.face_source[f]);
+    p.cut.push_back(cut[f]);
+  }
+}
+
+/// Runs a collapser in part p's slab. `seed` (per vertex) and `cut_distance` (per face)
+/// are the whole surface's, or null.
+void run_part(Part& p, const Limits& limits, double threshold, const CutSurface& cut_surface,
+              const std::vector<char>* seed, const std::vector<double>* cut_distance) {
+  std::vector<char> local_seed;
+  std::vector<double> local_distance;
+  if (seed)
+    for (int v : p.vertex_of) local_seed.push_back((*seed)[size_t(v)]);
+  if (cut_distance)
+    for (int f : p.face_of) local_distance.push_back((*cut_distance)[size_t(f)]);
+  Collapser c(p.r, p.cut, limits, nullptr, cut_surface, p.slab);
+  p.moves = c.run(threshold, seed ? &local_seed : nullptr, cut_distance ? &local_distance : nullptr);
+  p.budget_left = c.hand_over(p.alive, p.cut, p.cut_distance, p.deferred);
+}
+
+/// Writes the parts' changes back into r: a part changes only faces inside its slab, and
+/// the slabs are apart, so no face or vertex is changed by two. Dead faces go (vertices
+/// stay, some then unused). `seed` gets the vertices of faces in more than one part (on
+/// the slabs' border) and those whose moves a slab refused.
+void apply_parts(Result& r, std::vector<char>& cut, std::vector<double>& cut_distance, std::vector<char>& seed,
+                 const std::vector<Part*>& parts) {
+  const size_t nf = r.faces.size();
+  std::vector<int> owner(nf, -1), local_face(nf, -1);  // owner -2: in several parts
+  for (size_t i = 0; i < parts.size(); ++i)
+    for (size_t l = 0; l < parts[i]->face_of.size(); ++l) {
+      const int f = parts[i]->face_of[l];
+      owner[f] = owner[f] == -1 ? int(i) : -2;
+      local_face[f] = int(l);
+    }
+  for (const Part* p : parts)
+    for (size_t l = 0; l < p->vertex_of.size(); ++l) r.vertices[size_t(p->vertex_of[l])] = p->r.vertices[l];
+  seed.assign(r.vertices.size(), 0);
+  size_t k = 0;
+  const bool sources = !r.face_source.empty();
+  for (size_t f = 0; f < nf; ++f) {
+    const int i = owner[f];
+    if (i >= 0) {
+      const Part& p = *parts[size_t(i)];
+      const size_t l = size_t(local_face[f]);
+      if (!p.alive[l]) continue;
+      for (int z = 0; z < 3; ++z) r.faces[k][z] = p.vertex_of[size_t(p.r.faces[l][z])];
+      r.line_edge[k] = p.r.line_edge[l];
+      cut[k] = p.cut[l];
+      cut_distance[k] = p.cut_distance[l];
+      if (sources) r.face_source[k] = p.r.face_source[l];
+    } else {
+      if (i == -2)
+        for (int x : r.faces[f]) seed[size_t(x)] = 1;
+      r.faces[k] = r.faces[f];
+      r.line_edge[k] = r.line_edge[f];
+      cut[k] = cut[f];
+      cut_distance[k] = cut_distance[f];
+      if (sources) r.face_source[k] = r.face_source[f];
+    }
+    ++k;
+  }
+  r.faces.resize(k);
+  r.line_edge.resize(k);
+  cut.resize(k);
+  cut_distance.resize(k);
+  if (sources) r.face_source.resize(k);
+  for (const Part* p : parts)
+    for (size_t l = 0; l < p->vertex_of.size(); ++l)
+      if (p->deferred[l]) seed[size_t(p->vertex_of[l])] = 1;
+}
+
+/// The slivers' median along the longest extent of their centroids: two slabs, each
+/// with about half of them.
+std::array<Slab, 2> halves(const Result& r, const std::vector<int>& slivers) {
+  V3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  std::vector<V3> centroid(slivers.size());
+  for (size_t i = 0; i < slivers.size(); ++i) {
+    const auto& t = r.faces[slivers[i]];
+    for (int k = 0; k < 3; ++k) {
+      centroid[i][k] = (r.vertices[t[0]][k] + r.vertices[t[1]][k] + r.vertices[t[2]][k]) / 3;
+      lo[k] = std::min(lo[k], centroid[i][k]);
+      hi[k] = std::max(hi[k], centroid[i][k]);
+    }
+  }
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+  std::vector<double> c(slivers.size());
+  for (size_t i = 0; i < c.size(); ++i) c[i] = centroid[i][axis];
+  std::nth_element(c.begin(), c.begin() + ptrdiff_t(c.size() / 2), c.end());
+  const double m = c[c.size() / 2];
+  return {Slab{axis, -HUGE_VAL, m}, Slab{axis, m, HUGE_VAL}};
+}
+
+int collapse_in_halves(Result& r, const std::vector<char>& cut_in, const Limits& limits, double threshold,
+                       const std::vector<int>& slivers, SideWorker* helper) {
+  const std::array<Slab, 2> slabs = halves(r, slivers);
+  std::array<Part, 2> halves_run;
+  std::array<FaceTree, 2> trees;  // each half's part of the cut's surface, as the cut left it
+  Limits half = limits;
+  half.volume_budget /= 2;
+  parallel_for(2, 1, [&](size_t i) {
+    Part& p = halves_run[i];
+    p.slab = slabs[i];
+    extract(r, cut_in, p);
+    trees[i] = FaceTree(p.r.vertices, p.r.faces, faces_near_cut(p.r, p.cut));
+    run_part(p, half, threshold, CutSurface{&trees[i]}, nullptr, nullptr);
+  });
+  std::vector<char> cut = cut_in, seed;
+  std::vector<double> cut_distance(r.faces.size(), 0);
+  apply_parts(r, cut, cut_distance, seed, {&halves_run[0], &halves_run[1]});
+  // Then the whole surface, for the slivers either half left: those on the border and
+  // any a half could not mend alone (its share of the budget spent, or a move it had to
+  // refuse), with the budget the halves left.
+  for (size_t f = 0; f < r.faces.size(); ++f) {
+    const auto& t = r.faces[f];
+    if (cut[f] && smallest_angle(r.vertices[t[0]], r.vertices[t[1]], r.vertices[t[2]]) < threshold)
+      for (int x : t) seed[size_t(x)] = 1;
+  }
+  Limits rest = limits;
+  for (const Part& p : halves_run) rest.volume_budget -= half.volume_budget - p.budget_left;
+  rest.volume_budget = std::max(0.0, rest.volume_budget);
+  Collapser c(r, cut, rest, helper, CutSurface{&trees[0], &trees[1]});
+  const int moves = halves_run[0].moves + halves_run[1].moves + c.run(threshold, &seed, &cut_distance);
+  c.compact();
+  return moves;
+}
+
+}  // namespace
+
 int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
-                     double max_volume_change, SideWorker* helper) {
+                     double max_volume_change, SideWorker* helper, int* parts) {
+  const double threshold = sliver_angle_deg * kPi / 180;
+  const Limits limits = limits_of(r, max_deviation, max_volume_change);
+  std::vector<int> slivers;
+  for (int f = 0; f < int(r.faces.size()); ++f) {
+    const auto& t = r.faces[f];
+    if (cut[f] && smallest_angle(r.vertices[t[0]], r.vertices[t[1]], r.vertices[t[2]]) < threshold) slivers.push_back(f);
+  }
+  // Many slivers: two halves of the surface at once (the same result on one thread).
+  if (slivers.size() >= kMinSliversForParts) {
+    if (parts) *parts = 2;
+    return collapse_in_halves(r, cut, limits, threshold, slivers, helper);
+  }
+  if (parts) *parts = 1;
   // The tree and the collapser's own tables both only read r.
-  FaceTree cut_surface;
+  FaceTree tree;
   std::optional<Collapser> c;
-  auto build_tree = [&] { cut_surface = FaceTree(r.vertices, r.faces, faces_near_cut(r, cut)); };
+  auto build_tree = [&] { tree = FaceTree(r.vertices, r.faces, faces_near_cut(r, cut)); };
   auto set_up = [&] {
-    c.emplace(r, cut, max_deviation, max_volume_change, helper);
+    c.emplace(r, cut, limits, helper, CutSurface{&tree});
     return true;
   };
   if (helper) {
@@ -1436,8 +1720,7 @@ int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angl
     build_tree();
     set_up();
   }
-  c->take_cut_surface(std::move(cut_surface));
-  const int n = c->run(sliver_angle_deg * kPi / 180);
+  const int n = c->run(threshold);
   c->compact();
   return n;
 }

@@ -209,6 +209,7 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
       {"doubled_edges_split", QVariant(r.doubled_edges_split)},
       {"rounded_edges_merged", QVariant(r.rounded_edges_merged)},
       {"rounded_caps_split", QVariant(r.rounded_caps_split)},
+      {"sliver_parts", QVariant(r.sliver_parts)},
       {"vertices", QVariant(int(r.vertices.size()))},
       {"faces", QVariant(int(r.faces.size()))},
       {"min_angle", QVariant(r.min_angle_deg)},
