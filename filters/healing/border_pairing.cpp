@@ -1,6 +1,7 @@
 #include "healing/border_pairing.h"
 
 #include "common/uniform_grid.h"
+#include "healing/border_grid.h"
 #include "healing/segment_geometry.h"
 
 #include <algorithm>
@@ -95,14 +96,7 @@ struct Split {
 /// `tol` of their interior. Returns the number of splits.
 int split_t_junctions(Soup& s, const EdgeTable& edges, const std::vector<int>& border,
                       const std::vector<char>& is_border_vertex, Clusters& clusters, double tol) {
-  double mean_len = 0, max_len = 0;
-  for (int e : border) {
-    const double l = vcg::Distance(s.pos[edges.v0(e)], s.pos[edges.v1(e)]);
-    mean_len += l;
-    max_len = std::max(max_len, l);
-  }
-  mean_len /= std::max<size_t>(border.size(), 1);
-  UniformGrid grid(std::max({tol, mean_len, max_len / 64}));  // (a 64th: pieces per edge, uniform_grid.h)
+  UniformGrid grid(border_grid_cell(s, edges, border, tol));
   for (size_t i = 0; i < border.size(); ++i) {
     grid.insert_segment(int(i), s.pos[edges.v0(border[i])], s.pos[edges.v1(border[i])], tol);
   }

@@ -1,6 +1,7 @@
 #include "healing/open_borders.h"
 
 #include "common/uniform_grid.h"
+#include "healing/border_grid.h"
 #include "healing/segment_geometry.h"
 
 #include <algorithm>
@@ -25,15 +26,7 @@ OpenBorders find_open_borders(const Soup& s, const EdgeTable& edges, double radi
     if (on_border[v] && loops.find(v) == v) ++out.loops;
   if (open.empty() || !(radius > 0)) return out;
 
-  // Cells at least as large as the open edges on average (and a 64th of the longest): a
-  // tolerance-sized cell made long edges cost (length / tolerance) pieces each.
-  double mean_len = 0, max_len = 0;
-  for (int e : open) {
-    const double l = vcg::Distance(s.pos[edges.v0(e)], s.pos[edges.v1(e)]);
-    mean_len += l / double(open.size());
-    max_len = std::max(max_len, l);
-  }
-  UniformGrid grid(std::max({radius, mean_len, max_len / 64}));
+  UniformGrid grid(border_grid_cell(s, edges, open, radius));
   for (size_t i = 0; i < open.size(); ++i) {
     grid.insert_segment(int(i), s.pos[edges.v0(open[i])], s.pos[edges.v1(open[i])], 0);
   }

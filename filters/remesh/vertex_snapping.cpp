@@ -73,7 +73,6 @@ std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& loc
   };
 
   std::vector<char> moved(out.points.size(), 0);
-
   for (const auto& [ratio, v] : far) {
     const Point3& target = input.points[v];
     const double h = size.at_vertex(v);
