@@ -39,6 +39,13 @@ constexpr int kMaxRemovedValence = 12;
 constexpr double kMinSlideGain = 0.1;
 // Faces at a vertex whose normals differ by more than ~30 degrees: it lies on a crease.
 constexpr double kCreaseCos = 0.866;
+// A flat flip must raise its pair's smallest angle by this (radians), so that rounding in
+// the angles cannot make two flips undo each other.
+constexpr double kFlatFlipGain = 1e-9;
+// Sine of the angle between two faces' normals above which they are not taken for
+// coplanar without the exact test (far above the rounding of coplanar faces' normals;
+// the exact test of a thin sliver against a curved neighbour needs rational arithmetic).
+constexpr double kFlatSine = 1e-6;
 
 /// Boxes [alo, ahi] and [blo, bhi] have no point in common.
 inline bool boxes_apart(const V3& alo, const V3& ahi, const V3& blo, const V3& bhi) {
@@ -173,6 +180,21 @@ private:
     return unless_refused_now(flip_refused_now_[size_t(3 * f + z)], [&] { return attempt_flip(f, z); });
   }
   bool attempt_flip(int f, int z);
+  /// Before the checked moves, the input's own slivers on flat parts (CAD needles: 1261
+  /// of box.STL's 8954 faces): Lawson's flips between two of the input's faces that lie
+  /// exactly in one plane and form a strictly convex quad, where one of them is a sliver
+  /// and the flip raises the pair's smallest angle. The quad covers the same points after
+  /// the flip: no volume changes, nothing moves, nothing can come to cross, so none of
+  /// the other moves' checks is needed. They start at those slivers (with a corner in
+  /// `seed`, when given) and spread to the sides of each quad they change. The cut's own
+  /// faces are left to the checked moves: flipping them too gave fewer faces under 5 deg
+  /// on box.STL but, through the moves after it, smaller worst angles elsewhere (part.off
+  /// with its turned copy 0.31 deg instead of 0.68). Returns the flips.
+  int flip_flat_slivers(const std::vector<char>* seed);
+  /// Flips side z of face f as above if allowed; returns the other face, or -1.
+  int flat_flip(int f, int z);
+  /// Face f has an angle below the threshold (its tangent given): no arc tangent.
+  bool below_threshold(int f, double tan_threshold) const;
   /// A move refused at this clock (in `at`) is refused again without trying: nothing has
   /// changed since. Every change of a face moves the clock, and so does each round (the
   /// volume budget changes only with faces or between rounds). Neighbouring slivers try
@@ -487,8 +509,89 @@ private:
   static double det(const V3& a, const V3& b, const V3& c) { return dot(a, cross(b, c)); }
 
 public:
-  int collapses_ = 0, flips_ = 0;
+  int collapses_ = 0, flips_ = 0, flat_flips_ = 0;
 };
+
+bool Collapser::below_threshold(int f, double tan_threshold) const {
+  // The smallest angle lies opposite the shortest side.
+  const auto& t = r_.faces[f];
+  int z = 0;
+  double shortest = HUGE_VAL;
+  for (int k = 0; k < 3; ++k) {
+    const V3 e = sub3(P(t[(k + 1) % 3]), P(t[k]));
+    if (dot(e, e) < shortest) {
+      shortest = dot(e, e);
+      z = k;
+    }
+  }
+  const V3 o = P(t[(z + 2) % 3]);
+  const V3 a = sub3(P(t[z]), o), b = sub3(P(t[(z + 1) % 3]), o);
+  return norm(cross(a, b)) < tan_threshold * dot(a, b);
+}
+
+int Collapser::flat_flip(int f, int z) {
+  const int u = r_.faces[f][z], v = r_.faces[f][(z + 1) % 3], c = r_.faces[f][(z + 2) % 3];
+  if (cut_[f] || line_.count(ekey(u, v))) return -1;
+  int g = -1;
+  for (int h : vf_[v])
+    if (alive_[h] && h != f)
+      for (int y = 0; y < 3; ++y)
+        if (r_.faces[h][y] == v && r_.faces[h][(y + 1) % 3] == u) g = h;
+  if (g < 0 || cut_[g]) return -1;
+  int d = -1;
+  for (int x : r_.faces[g])
+    if (x != u && x != v) d = x;
+  const V3 n_f = cross(sub3(P(v), P(u)), sub3(P(c), P(u)));
+  const V3 n_g = cross(sub3(P(u), P(v)), sub3(P(d), P(v)));
+  if (!(dot(n_f, n_g) > 0) || norm(cross(n_f, n_g)) > kFlatSine * norm(n_f) * norm(n_g)) return -1;
+  {  // Locally Delaunay already (the angles at c and d sum to at most pi): no flip raises
+     // the smallest angle. Cheaper than the angles, which decide the rest.
+    const V3 cu = sub3(P(u), P(c)), cv = sub3(P(v), P(c)), du = sub3(P(u), P(d)), dv = sub3(P(v), P(d));
+    if (norm(cross(cu, cv)) * dot(du, dv) + dot(cu, cv) * norm(cross(du, dv)) >= 0) return -1;
+  }
+  const double before = std::min(min_angle(f), min_angle(g));
+  if (!(before < threshold_)) return -1;  // the input's good faces keep their shape
+  const double after = std::min(smallest_angle(P(u), P(d), P(c)), smallest_angle(P(d), P(v), P(c)));
+  if (!(after > before + kFlatFlipGain) || !flat_convex_quad(P(u), P(v), P(c), P(d)) || edge_exists(c, d)) return -1;
+  if (!in_slab(f) || !in_slab(g)) {  // (the new faces lie within the two old ones)
+    for (int h : {f, g}) for (int y : r_.faces[h]) defer(y);
+    return -1;
+  }
+  // (Both stay the input's faces, on the cut's surface: not treated by the other moves.)
+  flip(f, g, u, v, c, d);
+  refile(f);
+  refile(g);
+  for (int x : {u, v, c, d}) mark_around(x);
+  return g;
+}
+
+int Collapser::flip_flat_slivers(const std::vector<char>* seed) {
+  const double tan_threshold = std::tan(threshold_);
+  std::vector<std::pair<int, int>> stack;  // (face, side), face order from the top
+  for (int f = int(r_.faces.size()) - 1; f >= 0; --f) {
+    if (!alive_[f] || cut_[f]) continue;
+    const auto& t = r_.faces[f];
+    if (seed && !(*seed)[t[0]] && !(*seed)[t[1]] && !(*seed)[t[2]]) continue;
+    if (below_threshold(f, tan_threshold))
+      for (int z = 2; z >= 0; --z) stack.push_back({f, z});
+  }
+  int flips = 0;
+  // Each flip raises the mesh's sorted angles, so this ends; the cap guards rounding.
+  const long cap = 50L * long(r_.faces.size()) + 1000;
+  for (long steps = 0; !stack.empty() && steps < cap; ++steps) {
+    const auto [f, z] = stack.back();
+    stack.pop_back();
+    const int g = flat_flip(f, z);
+    if (g < 0) continue;
+    ++flips;
+    // f = (u, d, c) and g = (d, v, c): the quad's outer sides are f's 0 and 2, g's 0 and 1.
+    stack.push_back({g, 1});
+    stack.push_back({g, 0});
+    stack.push_back({f, 2});
+    stack.push_back({f, 0});
+  }
+  return flips;
+}
 
 bool Collapser::stays_near(double pointwise) {
   if (pointwise <= max_dev_) return true;
@@ -1385,6 +1488,15 @@ int Collapser::run(double threshold, const std::vector<char>* seed, const std::v
   removal_refused_now_.assign(r_.vertices.size(), -1);
   slide_refused_now_.assign(r_.vertices.size(), -1);
   relocation_refused_now_.assign(r_.vertices.size(), -1);
+  // The flat flips first; the vertices of the faces they changed join the seed.
+  std::vector<char> flat_seed;
+  changed_.assign(r_.vertices.size(), 0);
+  flat_flips_ = flip_flat_slivers(seed);
+  if (seed && flat_flips_ > 0) {
+    flat_seed = *seed;
+    for (size_t x = 0; x < flat_seed.size(); ++x) flat_seed[x] = flat_seed[x] || changed_[x];
+    seed = &flat_seed;
+  }
   for (int round = 0; round < 2; ++round) {
     ++clock_;
     removal_refused_at_.assign(r_.vertices.size(), -1);
@@ -1532,7 +1644,7 @@ struct Part {
   std::vector<char> alive, deferred;
   std::vector<double> cut_distance;
   double budget_left = 0;
-  int moves = 0;
+  int moves = 0, flat_flips = 0;
 };
 
 bool reaches_into(const Result& r, int f, const Slab& s) {
@@ -1578,6 +1690,7 @@ void run_part(Part& p, const Limits& limits, double threshold, const CutSurface&
     for (int f : p.face_of) local_distance.push_back((*cut_distance)[size_t(f)]);
   Collapser c(p.r, p.cut, limits, nullptr, cut_surface, p.slab);
   p.moves = c.run(threshold, seed ? &local_seed : nullptr, cut_distance ? &local_distance : nullptr);
+  p.flat_flips = c.flat_flips_;
   p.budget_left = c.hand_over(p.alive, p.cut, p.cut_distance, p.deferred);
 }
 
@@ -1656,7 +1769,7 @@ std::array<Slab, 2> halves(const Result& r, const std::vector<int>& slivers) {
 }
 
 int collapse_in_halves(Result& r, const std::vector<char>& cut_in, const Limits& limits, double threshold,
-                       const std::vector<int>& slivers, SideWorker* helper) {
+                       const std::vector<int>& slivers, SideWorker* helper, int* flat_flips) {
   const std::array<Slab, 2> slabs = halves(r, slivers);
   std::array<Part, 2> halves_run;
   std::array<FaceTree, 2> trees;  // each half's part of the cut's surface, as the cut left it
@@ -1685,6 +1798,7 @@ int collapse_in_halves(Result& r, const std::vector<char>& cut_in, const Limits&
   rest.volume_budget = std::max(0.0, rest.volume_budget);
   Collapser c(r, cut, rest, helper, CutSurface{&trees[0], &trees[1]});
   const int moves = halves_run[0].moves + halves_run[1].moves + c.run(threshold, &seed, &cut_distance);
+  if (flat_flips) *flat_flips = halves_run[0].flat_flips + halves_run[1].flat_flips + c.flat_flips_;
   c.compact();
   return moves;
 }
@@ -1692,7 +1806,7 @@ int collapse_in_halves(Result& r, const std::vector<char>& cut_in, const Limits&
 }  // namespace
 
 int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
-                     double max_volume_change, SideWorker* helper, int* parts) {
+                     double max_volume_change, SideWorker* helper, int* parts, int* flat_flips) {
   const double threshold = sliver_angle_deg * kPi / 180;
   const Limits limits = limits_of(r, max_deviation, max_volume_change);
   std::vector<int> slivers;
@@ -1703,7 +1817,7 @@ int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angl
   // Many slivers: two halves of the surface at once (the same result on one thread).
   if (slivers.size() >= kMinSliversForParts) {
     if (parts) *parts = 2;
-    return collapse_in_halves(r, cut, limits, threshold, slivers, helper);
+    return collapse_in_halves(r, cut, limits, threshold, slivers, helper, flat_flips);
   }
   if (parts) *parts = 1;
   // The tree and the collapser's own tables both only read r.
@@ -1721,6 +1835,7 @@ int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angl
     set_up();
   }
   const int n = c->run(threshold);
+  if (flat_flips) *flat_flips = c->flat_flips_;
   c->compact();
   return n;
 }

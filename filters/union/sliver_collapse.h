@@ -13,7 +13,8 @@ namespace mr::surface_union {
 /// Collapses slivers of `r` in place (vertices, faces, line_edge, compacted);
 /// returns the number of collapses. Only faces with `cut[f]` (made by the cut) are
 /// treated; slivers the input already had are left as they are, but for those a line
-/// bent onto a crease vertex reshapes (they are then treated too).
+/// bent onto a crease vertex reshapes and those a flat flip reshapes (they are then
+/// treated too).
 /// `max_deviation` bounds each move (fraction of the bbox diagonal); `max_volume_change`
 /// bounds the total volume change of all moves (fraction of the volume).
 /// `helper` (may be null) takes each move's crossing check beside its other checks, and
@@ -22,8 +23,12 @@ namespace mr::surface_union {
 /// changing only faces strictly on its side of a plane, then over the whole surface
 /// where they left slivers; `parts` (may be null) gets 2 then, else 1. The result does
 /// not depend on the number of threads.
+/// Before its checked moves the step flips edges on flat parts (Lawson's flips, which
+/// move nothing), also between the input's own slivers there; `flat_flips` (may be
+/// null) gets their number.
 int collapse_slivers(Result& r, const std::vector<char>& cut, double sliver_angle_deg, double max_deviation,
-                     double max_volume_change, SideWorker* helper = nullptr, int* parts = nullptr);
+                     double max_volume_change, SideWorker* helper = nullptr, int* parts = nullptr,
+                     int* flat_flips = nullptr);
 
 /// Smallest face angle of a mesh, degrees.
 double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vector<std::array<int, 3>>& f);

@@ -314,7 +314,7 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
   SideWorker* lent = worker_count() > 1 ? helper.get() : nullptr;
   if (params.sliver_angle_deg > 0)
     r.slivers_collapsed = collapse_slivers(r, cut, params.sliver_angle_deg, params.sliver_max_deviation,
-                                           params.sliver_max_volume_change, lent, &r.sliver_parts);
+                                           params.sliver_max_volume_change, lent, &r.sliver_parts, &r.flat_flips);
   r.time_slivers_ms = ms_since(t);
   for (const auto& l : r.line_edge) r.intersection_edges += int(l[0]) + int(l[1]) + int(l[2]);
   r.intersection_edges /= 2;

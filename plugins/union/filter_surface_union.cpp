@@ -205,6 +205,7 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
       {"cut_faces", QVariant(r.cut_faces)},
       {"faces_removed", QVariant(r.faces_removed)},
       {"slivers_collapsed", QVariant(r.slivers_collapsed)},
+      {"flat_flips", QVariant(r.flat_flips)},
       {"orientation_conflicts", QVariant(r.orientation_conflicts)},
       {"doubled_edges_split", QVariant(r.doubled_edges_split)},
       {"rounded_edges_merged", QVariant(r.rounded_edges_merged)},

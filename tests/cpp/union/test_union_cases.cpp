@@ -492,3 +492,78 @@ TEST(UnionCases, ManySliversAreTreatedInTwoHalvesWithTheSameResultOnAnyThreadCou
   out.faces = one.faces;
   EXPECT_FALSE(self_intersection(out).has_value());
 }
+
+namespace {
+
+/// A slab [0, 1] x [0, 0.3] x [0, 1] with n + 1 vertices along each long edge of its
+/// caps, which are two fans from opposite corners: CAD-like needles (the far ones under
+/// 1 deg) in two flat faces. The long sides are strips of n rectangles.
+Body fan_capped_slab(int n) {
+  Body b;
+  b.name = "slab";
+  std::vector<std::array<double, 2>> ring;  // counter-clockwise seen from +z
+  for (int i = 0; i <= n; ++i) ring.push_back({double(i) / n, 0});
+  for (int i = n; i >= 0; --i) ring.push_back({double(i) / n, 0.3});
+  const int k = int(ring.size());
+  for (double z : {0.0, 1.0})
+    for (const auto& p : ring) b.vertices.push_back({p[0], p[1], z});
+  // Two fans split along the diagonal from (0, 0) to (1, 0.3) (ring index n + 1).
+  std::vector<std::array<int, 3>> cap;  // counter-clockwise seen from +z
+  for (int i = 0; i < n; ++i) cap.push_back({n + 1, i, i + 1});
+  for (int j = n + 1; j + 1 < k; ++j) cap.push_back({0, j, j + 1});
+  for (const auto& t : cap) {
+    b.faces.push_back({t[0], t[2], t[1]});             // bottom, facing -z
+    b.faces.push_back({k + t[0], k + t[1], k + t[2]});  // top, facing +z
+  }
+  for (int i = 0; i < k; ++i) {
+    const int j = (i + 1) % k;
+    b.faces.push_back({i, j, k + j});
+    b.faces.push_back({i, k + j, k + i});
+  }
+  return b;
+}
+
+/// Faces of r with all corners on the plane z = c and an angle under `deg`.
+int flat_faces_under(const Result& r, double c, double deg) {
+  int n = 0;
+  for (const auto& t : r.faces) {
+    const auto &a = r.vertices[t[0]], &b = r.vertices[t[1]], &d = r.vertices[t[2]];
+    if (a[2] != c || b[2] != c || d[2] != c) continue;
+    double smallest = 180;
+    const std::array<double, 3>* q[3] = {&a, &b, &d};
+    for (int z = 0; z < 3; ++z) {
+      const auto &o = *q[z], &p = *q[(z + 1) % 3], &s = *q[(z + 2) % 3];
+      double u[3], w[3];
+      for (int m = 0; m < 3; ++m) u[m] = p[m] - o[m], w[m] = s[m] - o[m];
+      const double cx = u[1] * w[2] - u[2] * w[1], cy = u[2] * w[0] - u[0] * w[2], cz = u[0] * w[1] - u[1] * w[0];
+      const double angle = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), u[0] * w[0] + u[1] * w[1] + u[2] * w[2]);
+      smallest = std::min(smallest, angle * 180 / M_PI);
+    }
+    n += smallest < deg;
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST(UnionCases, TheInputsFlatSliversAreFlippedWithoutMovingTheSurface) {
+  // The slab's caps are fans of needles; a cube cuts its top cap and one long side. The
+  // flat flips re-triangulate both caps (the bottom one far from the cut) towards the
+  // Delaunay strip of their points, whose smallest angle is atan(0.05 / 0.3) = 9.5 deg.
+  const Body slab = fan_capped_slab(20);
+  const std::vector<Body> bodies = {slab, cube_body(1, 0.75, 0, 1, 0.5)};
+  const Result raw = unite(bodies, 0.0);
+  const Result improved = unite(bodies, 10.0);
+  expect_closed(improved);
+  EXPECT_EQ(raw.flat_flips, 0);
+  EXPECT_GT(improved.flat_flips, 20);
+  EXPECT_GE(flat_faces_under(raw, 0.0, 5.0), 10);  // the bottom cap as it came
+  EXPECT_EQ(flat_faces_under(improved, 0.0, 5.0), 0);
+  EXPECT_EQ(flat_faces_under(improved, 0.0, 9.0), 0);
+  EXPECT_GE(flat_faces_under(raw, 1.0, 5.0), 5);
+  EXPECT_EQ(flat_faces_under(improved, 1.0, 5.0), 0);
+  // Flips move nothing: the volume is the exact arrangement's up to the checked moves'
+  // budget, and the union's outline is unchanged.
+  EXPECT_LE(std::fabs(volume(improved) / volume(raw) - 1), Params{}.sliver_max_volume_change * (1 + 1e-9));
+  EXPECT_EQ(improved.lines.size(), raw.lines.size());
+}
