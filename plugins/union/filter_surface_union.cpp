@@ -35,7 +35,8 @@ QString FilterSurfaceUnionPlugin::filterInfo(ActionIDType) const {
          "intersection segments as constraints; the outer surface is collected by a flood fill from an "
          "extreme face that, at intersection edges, continues into the neighbour visible from the current face. "
          "Slivers left by the cut are removed by collapsing their shortest edge when no normal flips and the "
-         "quality improves.<br>"
+         "quality improves; the input's own slivers on flat faces (CAD needles) are flipped towards the "
+         "Delaunay triangulation of their plane, which moves no point.<br>"
          "The result is a new layer, watertight, manifold and consistently oriented, with the intersection "
          "lines as the per-face-edge selection; optionally a second layer holds the lines as an edge mesh.<br>"
          "For more details see:<br>"
@@ -64,7 +65,8 @@ RichParameterList FilterSurfaceUnionPlugin::initParameterList(const QAction*, co
   list.addParam(RichFloat("sliver_angle", defaults.sliver_angle_deg, "Sliver angle (deg)",
                           "After the cut, faces with an angle below this (degrees, [0, 60)) are removed by "
                           "collapsing their shortest edge when that improves quality, flips no normal and keeps "
-                          "the intersection lines. 0 turns the step off."));
+                          "the intersection lines; the input's own such faces on flat parts are flipped within their "
+                          "plane (no point moves). 0 turns the step off."));
   list.addParam(RichFloat("sliver_max_deviation", defaults.sliver_max_deviation, "Sliver collapse deviation",
                           "Largest distance the sliver step may move the surface from the exact union, all its "
                           "moves together, as a fraction of the bounding-box diagonal (checked at samples of "
