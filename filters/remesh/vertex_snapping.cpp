@@ -43,6 +43,22 @@ std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& loc
     });
     return best;
   };
+  // The same search split for a move of q: the distance to the faces off q's star (marked
+  // in `in_star`; the search stops once one is within `enough`), and whether it reaches a face
+  // of the star, whose distances are all that the move changes.
+  std::vector<char> in_star(out.faces.size(), 0);
+  auto deviation_off_star = [&](const Point3& p, double r, double enough, bool& star_reached) {
+    double best = std::numeric_limits<double>::infinity();
+    star_reached = false;
+    grid.visit(p, r, [&](int v) {
+      for (int k = out_rings.begin[v]; k < out_rings.begin[v + 1] && best > enough; ++k) {
+        const int f = out_rings.item[k];
+        if (in_star[f]) star_reached = true;
+        else best = std::min(best, face_distance(out, f, p));
+      }
+    });
+    return best;
+  };
   std::vector<std::pair<double, int>> far;
   for (size_t v = 0; v < input.points.size(); ++v) {
     const double h = size.at_vertex(int(v));
@@ -112,27 +128,47 @@ std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& loc
         ok = n * old_normals[k - out_rings.begin[q]] >= 0.5 &&
              min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]) >= std::min(old_min, params.min_angle_deg * kDeg);
       }
-      out.points[q] = old;
-      if (!ok) continue;
-      const std::vector<int> neighbours = around(q);
-      std::vector<double> before, gaps_before;
-      // (Only compared with the threshold and kept if larger: a search may stop within it.
-      // Likewise after the move, within the limit. Each vertex then looks at a face or two.)
-      for (int u : neighbours) {
-        const double threshold = params.min_deviation * size.at_vertex(u);
-        before.push_back(std::max(deviation(input.points[u], size.at_vertex(u), threshold), threshold));
+      if (!ok) {
+        out.points[q] = old;
+        continue;
       }
-      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1]; ++k) gaps_before.push_back(face_gap(out_rings.item[k]));
-      out.points[q] = target;
-      // Nothing nearby may end up beyond the threshold that was within it (or farther than it was).
+      // Then the faces' own distance from the input (a few lookups), before the input
+      // vertices nearby (a search from each, and there may be thousands).
+      std::vector<double> gaps_after;
+      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1]; ++k) gaps_after.push_back(face_gap(out_rings.item[k]));
+      out.points[q] = old;
+      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1] && ok; ++k)
+        ok = gaps_after[k - out_rings.begin[q]] <= std::max(face_gap(out_rings.item[k]), params.min_deviation * h) * (1 + 1e-9);
+      if (!ok) continue;
+      // Nothing nearby may end up beyond the threshold that was within it (or farther than it
+      // was). The search reaches the same faces before and after the move (the grid keeps q's
+      // old place meanwhile), and only the star's distances change: one search off the star per
+      // input vertex, which ends at the first face within the threshold (then the vertex stays
+      // within it whatever the move does; so it is for nearly all), and the star's few faces
+      // before and after where it does not.
+      const std::vector<int> neighbours = around(q);
+      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1]; ++k) in_star[out_rings.item[k]] = 1;
+      auto star_distance = [&](const Point3& p) {
+        double best = std::numeric_limits<double>::infinity();
+        for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1]; ++k)
+          best = std::min(best, face_distance(out, out_rings.item[k], p));
+        return best;
+      };
       for (size_t k = 0; k < neighbours.size() && ok; ++k) {
         const int u = neighbours[k];
         if (u == v) continue;
-        const double limit = before[k] * (1 + 1e-9);
-        ok = deviation(input.points[u], size.at_vertex(u), limit) <= limit;
+        const Point3& p = input.points[u];
+        const double threshold = params.min_deviation * size.at_vertex(u);
+        bool star_reached = false;
+        const double off_star = deviation_off_star(p, size.at_vertex(u), threshold * (1 + 1e-9), star_reached);
+        if (off_star <= threshold * (1 + 1e-9) || !star_reached) continue;
+        out.points[q] = old;
+        const double before = std::max(std::min(off_star, star_distance(p)), threshold);
+        out.points[q] = target;
+        ok = std::min(off_star, star_distance(p)) <= before * (1 + 1e-9);
       }
-      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1] && ok; ++k)
-        ok = face_gap(out_rings.item[k]) <= std::max(gaps_before[k - out_rings.begin[q]], params.min_deviation * h) * (1 + 1e-9);
+      for (int k = out_rings.begin[q]; k < out_rings.begin[q + 1]; ++k) in_star[out_rings.item[k]] = 0;
+      out.points[q] = target;
       if (!ok) { out.points[q] = old; continue; }
       out.host[q] = in_rings.item[in_rings.begin[v]];
       grid.insert(q, target);  // found from its new place too (the old entry only costs a visit)
