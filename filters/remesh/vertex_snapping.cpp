@@ -34,27 +34,17 @@ std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& loc
 
   // Distance from p to the output faces around points within r of it (infinity if none). With
   // `enough`, the search stops at the first face that close: the scan over every input vertex
-  // only asks whether a vertex is farther than that, and nearly all are not.
-  auto deviation = [&](const Point3& p, double r, double enough = -1.0) {
-    double best = std::numeric_limits<double>::infinity();
-    grid.visit(p, r, [&](int v) {
-      for (int k = out_rings.begin[v]; k < out_rings.begin[v + 1] && best > enough; ++k)
-        best = std::min(best, face_distance(out, out_rings.item[k], p));
-    });
-    return best;
-  };
-  // The same search split for a move of q: the distance to the faces off q's star (marked
-  // in `in_star`; the search stops once one is within `enough`), and whether it reaches a face
-  // of the star, whose distances are all that the move changes.
+  // only asks whether a vertex is farther than that, and nearly all are not. Faces marked in
+  // `in_star` (a candidate's star while its move is checked) are left out; `star_reached` then
+  // tells whether the search met one of them, whose distances are all that the move changes.
   std::vector<char> in_star(out.faces.size(), 0);
-  auto deviation_off_star = [&](const Point3& p, double r, double enough, bool& star_reached) {
+  auto deviation = [&](const Point3& p, double r, double enough = -1.0, bool* star_reached = nullptr) {
     double best = std::numeric_limits<double>::infinity();
-    star_reached = false;
     grid.visit(p, r, [&](int v) {
       for (int k = out_rings.begin[v]; k < out_rings.begin[v + 1] && best > enough; ++k) {
         const int f = out_rings.item[k];
-        if (in_star[f]) star_reached = true;
-        else best = std::min(best, face_distance(out, f, p));
+        if (!in_star[f]) best = std::min(best, face_distance(out, f, p));
+        else if (star_reached) *star_reached = true;
       }
     });
     return best;
@@ -160,7 +150,7 @@ std::vector<int> snap_to_far_vertices(OutputMesh& out, const SurfaceLocator& loc
         const Point3& p = input.points[u];
         const double threshold = params.min_deviation * size.at_vertex(u);
         bool star_reached = false;
-        const double off_star = deviation_off_star(p, size.at_vertex(u), threshold * (1 + 1e-9), star_reached);
+        const double off_star = deviation(p, size.at_vertex(u), threshold * (1 + 1e-9), &star_reached);
         if (off_star <= threshold * (1 + 1e-9) || !star_reached) continue;
         out.points[q] = old;
         const double before = std::max(std::min(off_star, star_distance(p)), threshold);

@@ -341,6 +341,22 @@ private:
     deferred_[size_t(x)] = 1;
     return false;
   }
+  /// The live face across side (u, v) of face f (it holds the side as (v, u)), or -1.
+  int face_across(int f, int u, int v) const {
+    int g = -1;
+    for (int h : vf_[v])
+      if (alive_[h] && h != f)
+        for (int y = 0; y < 3; ++y)
+          if (r_.faces[h][y] == v && r_.faces[h][(y + 1) % 3] == u) g = h;
+    return g;
+  }
+  /// The corner of face g that is neither u nor v.
+  int third_corner(int g, int u, int v) const {
+    int d = -1;
+    for (int x : r_.faces[g])
+      if (x != u && x != v) d = x;
+    return d;
+  }
   bool edge_exists(int a, int b) const {
     for (int f : vf_[a])
       if (alive_[f] && has_corner(r_.faces[f], b)) return true;
@@ -532,15 +548,9 @@ bool Collapser::below_threshold(int f, double tan_threshold) const {
 int Collapser::flat_flip(int f, int z) {
   const int u = r_.faces[f][z], v = r_.faces[f][(z + 1) % 3], c = r_.faces[f][(z + 2) % 3];
   if (cut_[f] || line_.count(ekey(u, v))) return -1;
-  int g = -1;
-  for (int h : vf_[v])
-    if (alive_[h] && h != f)
-      for (int y = 0; y < 3; ++y)
-        if (r_.faces[h][y] == v && r_.faces[h][(y + 1) % 3] == u) g = h;
+  const int g = face_across(f, u, v);
   if (g < 0 || cut_[g]) return -1;
-  int d = -1;
-  for (int x : r_.faces[g])
-    if (x != u && x != v) d = x;
+  const int d = third_corner(g, u, v);
   const V3 n_f = cross(sub3(P(v), P(u)), sub3(P(c), P(u)));
   const V3 n_g = cross(sub3(P(u), P(v)), sub3(P(d), P(v)));
   if (!(dot(n_f, n_g) > 0) || norm(cross(n_f, n_g)) > kFlatSine * norm(n_f) * norm(n_g)) return -1;
@@ -1047,19 +1057,13 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
 bool Collapser::attempt_flip(int f, int z) {
   const int u = r_.faces[f][z], v = r_.faces[f][(z + 1) % 3], c = r_.faces[f][(z + 2) % 3];
   if (line_.count(ekey(u, v)) ) return false;
-  int g = -1;
-  for (int h : vf_[v])
-    if (alive_[h] && h != f)
-      for (int y = 0; y < 3; ++y)
-        if (r_.faces[h][y] == v && r_.faces[h][(y + 1) % 3] == u) g = h;
+  const int g = face_across(f, u, v);
   if (g < 0) return false;
   if (!in_slab(f) || !in_slab(g)) {  // (the new faces lie within the two old ones)
     for (int h : {f, g}) for (int y : r_.faces[h]) defer(y);
     return false;
   }
-  int d = -1;
-  for (int x : r_.faces[g])
-    if (x != u && x != v) d = x;
+  const int d = third_corner(g, u, v);
   if (edge_exists(c, d)) return false;  // the new edge must not exist already
   const V3 n_f = cross(sub3(P(v), P(u)), sub3(P(c), P(u)));
   const V3 n_g = cross(sub3(P(u), P(v)), sub3(P(d), P(v)));

@@ -3,6 +3,7 @@
 #include "shapes.h"
 #include "union/self_intersection.h"
 #include "union/surface_union.h"
+#include "union/triangle_angles.h"
 #include "union_checks.h"
 
 #include <gtest/gtest.h>
@@ -528,18 +529,7 @@ int flat_faces_under(const Result& r, double c, double deg) {
   int n = 0;
   for (const auto& t : r.faces) {
     const auto &a = r.vertices[t[0]], &b = r.vertices[t[1]], &d = r.vertices[t[2]];
-    if (a[2] != c || b[2] != c || d[2] != c) continue;
-    double smallest = 180;
-    const std::array<double, 3>* q[3] = {&a, &b, &d};
-    for (int z = 0; z < 3; ++z) {
-      const auto &o = *q[z], &p = *q[(z + 1) % 3], &s = *q[(z + 2) % 3];
-      double u[3], w[3];
-      for (int m = 0; m < 3; ++m) u[m] = p[m] - o[m], w[m] = s[m] - o[m];
-      const double cx = u[1] * w[2] - u[2] * w[1], cy = u[2] * w[0] - u[0] * w[2], cz = u[0] * w[1] - u[1] * w[0];
-      const double angle = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), u[0] * w[0] + u[1] * w[1] + u[2] * w[2]);
-      smallest = std::min(smallest, angle * 180 / M_PI);
-    }
-    n += smallest < deg;
+    if (a[2] == c && b[2] == c && d[2] == c) n += smallest_angle(a, b, d) < deg * M_PI / 180;
   }
   return n;
 }
