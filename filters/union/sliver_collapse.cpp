@@ -550,6 +550,8 @@ int Collapser::flat_flip(int f, int z) {
   if (cut_[f] || line_.count(ekey(u, v))) return -1;
   const int g = face_across(f, u, v);
   if (g < 0 || cut_[g]) return -1;
+  const double before = std::min(min_angle(f), min_angle(g));
+  if (!(before < threshold_)) return -1;  // the input's good faces keep their shape
   const int d = third_corner(g, u, v);
   const V3 n_f = cross(sub3(P(v), P(u)), sub3(P(c), P(u)));
   const V3 n_g = cross(sub3(P(u), P(v)), sub3(P(d), P(v)));
@@ -559,8 +561,6 @@ int Collapser::flat_flip(int f, int z) {
     const V3 cu = sub3(P(u), P(c)), cv = sub3(P(v), P(c)), du = sub3(P(u), P(d)), dv = sub3(P(v), P(d));
     if (norm(cross(cu, cv)) * dot(du, dv) + dot(cu, cv) * norm(cross(du, dv)) >= 0) return -1;
   }
-  const double before = std::min(min_angle(f), min_angle(g));
-  if (!(before < threshold_)) return -1;  // the input's good faces keep their shape
   const double after = std::min(smallest_angle(P(u), P(d), P(c)), smallest_angle(P(d), P(v), P(c)));
   if (!(after > before + kFlatFlipGain) || !flat_convex_quad(P(u), P(v), P(c), P(d)) || edge_exists(c, d)) return -1;
   if (!in_slab(f) || !in_slab(g)) {  // (the new faces lie within the two old ones)

@@ -56,7 +56,7 @@ struct Result {
   int cut_faces = 0;
   int faces_removed = 0;                          ///< sub-faces inside the union (or duplicated)
   int slivers_collapsed = 0;
-  int flat_flips = 0;                             ///< edges the sliver step flipped in flat regions (moving nothing)
+  int flat_flips = 0;                             ///< edges between the input's own flat slivers the sliver step flipped (moving nothing)
   int sliver_parts = 0;                           ///< parts of the surface the sliver step treated at once (1 or 2; 0: no step)
   int orientation_conflicts = 0;                  ///< fill steps into a same-oriented face (should be 0)
   int doubled_edges_split = 0;                    ///< edges of two touching sheets split apart (doubled_edges.h)
