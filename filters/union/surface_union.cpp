@@ -13,6 +13,7 @@
 #include "union/rounded_caps.h"
 #include "union/rounded_edges.h"
 #include "union/sliver_collapse.h"
+#include "union/slivers_left.h"
 #include "union/triangle_intersection.h"
 
 #include <vcg/complex/algorithms/clean.h>
@@ -320,6 +321,7 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
   r.intersection_edges /= 2;
   chain_lines(r);
   r.min_angle_deg = min_angle_deg(r.vertices, r.faces);
+  r.slivers_left = count_slivers_left(r, bodies, kReportedSliverDeg);
 }
 
 }  // namespace

@@ -192,9 +192,9 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
 
   const double ms = double(timer.nsecsElapsed()) * 1e-6;
   log("Union of %d bodies: %d intersecting pairs, %d intersection points, %d lines, %d faces removed, "
-      "%d slivers collapsed, min angle %.2f deg (%.1f ms)",
+      "%d slivers collapsed, min angle %.2f deg, %d faces under %.0f deg worse than their input face (%.1f ms)",
       r.bodies, r.intersecting_pairs, r.intersection_points, int(r.lines.size()), r.faces_removed,
-      r.slivers_collapsed, r.min_angle_deg, ms);
+      r.slivers_collapsed, r.min_angle_deg, r.slivers_left, mr::surface_union::kReportedSliverDeg, ms);
   return {
       {"bodies", QVariant(r.bodies)},
       {"bodies_reoriented", QVariant(r.bodies_reoriented)},
@@ -216,6 +216,7 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
       {"vertices", QVariant(int(r.vertices.size()))},
       {"faces", QVariant(int(r.faces.size()))},
       {"min_angle", QVariant(r.min_angle_deg)},
+      {"slivers_left", QVariant(r.slivers_left)},
       {"time_pairs_ms", QVariant(r.time_pairs_ms)},
       {"time_intersect_ms", QVariant(r.time_intersect_ms)},
       {"time_retriangulate_ms", QVariant(r.time_retriangulate_ms)},

@@ -1,0 +1,28 @@
+#include "union/slivers_left.h"
+
+#include "union/triangle_angles.h"
+
+namespace mr::surface_union {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
+int count_slivers_left(const Result& r, const std::vector<Body>& bodies, double angle_deg) {
+  const double limit = angle_deg * kPi / 180;
+  std::vector<double> input_angle;  // per input face, all bodies in order
+  for (const Body& b : bodies)
+    for (const auto& t : b.faces) input_angle.push_back(smallest_angle(b.vertices[t[0]], b.vertices[t[1]], b.vertices[t[2]]));
+  int left = 0;
+  for (size_t f = 0; f < r.faces.size(); ++f) {
+    const auto& t = r.faces[f];
+    const double a = smallest_angle(r.vertices[t[0]], r.vertices[t[1]], r.vertices[t[2]]);
+    if (!(a < limit)) continue;
+    const int s = f < r.face_source.size() ? r.face_source[f] : -1;
+    // (No source: nothing to excuse the face.)
+    if (s < 0 || size_t(s) >= input_angle.size() || a < input_angle[size_t(s)]) ++left;
+  }
+  return left;
+}
+
+}  // namespace mr::surface_union
