@@ -36,8 +36,8 @@ struct Params {
   bool check_self_intersections = true;
 };
 
-/// The angle under which Result::slivers_left counts faces: the bar of a mesh fit for
-/// analysis that MeshLab's union, CGAL and manifold3d leave 2 to 27% of their faces under.
+/// The angle under which Result::slivers_left counts faces: the quality bar
+/// (MeshLab's union, CGAL and manifold3d leave 2 to 27% of their faces under it).
 constexpr double kReportedSliverDeg = 5.0;
 
 struct Result {

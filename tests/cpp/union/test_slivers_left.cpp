@@ -29,18 +29,21 @@ void add_needle(std::vector<std::array<double, 3>>& v, std::vector<std::array<in
 }  // namespace
 
 TEST(SliversLeft, CountsFacesUnderTheAngleThatAreWorseThanTheirInputFace) {
-  Body input;  // face 0: 60 deg (good), face 1: a 2 deg needle
-  add_needle(input.vertices, input.faces, 60, 0);
-  add_needle(input.vertices, input.faces, 2, 10);
+  // Sources in all bodies' faces in order: 0 is the first body's 60 deg face, 1 the second
+  // body's 2 deg needle.
+  Body good, needle;
+  add_needle(good.vertices, good.faces, 60, 0);
+  add_needle(needle.vertices, needle.faces, 2, 10);
+  const std::vector<Body> input = {good, needle};
   Result r;
   add_needle(r.vertices, r.faces, 1, 0);   // in the good face: counted
-  add_needle(r.vertices, r.faces, 1, 2);   // in the 2 deg needle, and worse: counted
+  add_needle(r.vertices, r.faces, 1, 2);   // in the needle, and worse: counted
   add_needle(r.vertices, r.faces, 3, 4);   // in the needle, better than it: the input's
   add_needle(r.vertices, r.faces, 30, 6);  // not a sliver
   add_needle(r.vertices, r.faces, 4, 8);   // without a source: counted
   r.face_source = {0, 1, 1, 0, -1};
-  EXPECT_EQ(count_slivers_left(r, {input}, 5.0), 3);
-  EXPECT_EQ(count_slivers_left(r, {input}, 0.5), 0);  // nothing under half a degree
+  EXPECT_EQ(count_slivers_left(r, input, 5.0), 3);
+  EXPECT_EQ(count_slivers_left(r, input, 0.5), 0);  // nothing under half a degree
 }
 
 TEST(SliversLeft, TheSliverStepLeavesNoneOfTheCutsSliversOnThreeSpheres) {
