@@ -568,7 +568,15 @@ int Collapser::flat_flip(int f, int z) {
     return -1;
   }
   // (Both stay the input's faces, on the cut's surface: not treated by the other moves.)
+  const bool f_worse = min_angle(f) <= min_angle(g);
   flip(f, g, u, v, c, d);
+  // Both new faces lie across both old ones; their source is the worse one's, so that the
+  // input face a face is measured against had no better angle (slivers_left.h): the flip
+  // raised the pair's smallest angle above it.
+  if (!r_.face_source.empty()) {
+    const int worse = r_.face_source[size_t(f_worse ? f : g)];
+    r_.face_source[size_t(f)] = r_.face_source[size_t(g)] = worse;
+  }
   refile(f);
   refile(g);
   for (int x : {u, v, c, d}) mark_around(x);

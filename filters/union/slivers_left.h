@@ -14,6 +14,7 @@ namespace mr::surface_union {
 /// angle of their input face (`r.face_source`, an index into all `bodies`' faces in order).
 /// After the sliver step a face's source is the input face its slot came from, within
 /// the deviation bound of it: the count then compares with a neighbour's shape at worst.
+/// A flat flip's two faces lie across both old ones and take the worse one's source.
 int count_slivers_left(const Result& r, const std::vector<Body>& bodies, double angle_deg);
 
 }  // namespace mr::surface_union

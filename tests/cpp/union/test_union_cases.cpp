@@ -557,3 +557,43 @@ TEST(UnionCases, TheInputsFlatSliversAreFlippedWithoutMovingTheSurface) {
   EXPECT_LE(std::fabs(volume(improved) / volume(raw) - 1), Params{}.sliver_max_volume_change * (1 + 1e-9));
   EXPECT_EQ(improved.lines.size(), raw.lines.size());
 }
+
+namespace {
+
+/// A prism of height 0.3 over the flat quadrilateral u, d, v, c (u = (0, 0), v = (1, 0)),
+/// each cap split along uv: a 6.0 deg face (u, v, c) and a 0.12 deg needle (v, u, d) with
+/// d next to u. Flipping to cd raises the pair's smallest angle to 0.9 deg, in the face
+/// that took the place of the 6.0 deg one.
+Body needle_quad_prism(double dx) {
+  Body b;
+  b.name = "prism";
+  const std::array<std::array<double, 2>, 4> ring = {{{0, 0}, {0.05, -0.002}, {1, 0}, {0.5, 0.0525}}};  // u d v c
+  for (double z : {0.0, 0.3})
+    for (const auto& p : ring) b.vertices.push_back({p[0] + dx, p[1], z});
+  // Top (facing +z): (u, v, c), (v, u, d); bottom the same, facing -z.
+  b.faces = {{4, 6, 7}, {6, 4, 5}, {0, 3, 2}, {2, 1, 0}};
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 1) % 4;
+    b.faces.push_back({i, j, 4 + j});
+    b.faces.push_back({i, 4 + j, 4 + i});
+  }
+  return b;
+}
+
+}  // namespace
+
+TEST(UnionCases, AFlatFlipIsMeasuredAgainstTheWorseOfTheInputFacesItSpans) {
+  // Both new faces lie across both old ones. The one in the 6.0 deg face's place has
+  // 0.9 deg, still far better than the needle the input had there: slivers_left must not
+  // count it (it did until stop 32, comparing with the slot's old face only).
+  const std::vector<Body> bodies = {needle_quad_prism(0), cube_body(1, 3, 0, 0, 0.5), cube_body(1, 3.25, 0, 0, 0.5)};
+  const Result raw = unite(bodies, 0.0);
+  const Result improved = unite(bodies, 10.0);
+  expect_closed(improved);
+  EXPECT_GE(improved.flat_flips, 2);
+  EXPECT_LT(raw.min_angle_deg, 0.2);
+  EXPECT_GT(improved.min_angle_deg, 0.5);
+  EXPECT_LT(improved.min_angle_deg, 5.0);  // a sliver is left, the input's doing
+  EXPECT_EQ(raw.slivers_left, 0);
+  EXPECT_EQ(improved.slivers_left, 0);
+}
