@@ -35,7 +35,7 @@ def seed_range(doc, timeout):
     """FIRST LAST [--timeout S] from the command line (`doc`: the script's docstring)."""
     ap = argparse.ArgumentParser(description=doc.splitlines()[0])
     ap.add_argument("first", type=int)
-    ap.add_argument("last", type=int)
+    ap.add_argument("last", type=int, help="first seed not run (the range leaves it out)")
     ap.add_argument("--timeout", type=float, default=timeout)
     args = ap.parse_args()
     return range(args.first, args.last), args.timeout

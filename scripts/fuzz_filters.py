@@ -3,6 +3,7 @@
 a PyMeshLabException, leave the input layer as it was, write no NaN, and never crash or hang.
 
 Usage: .venv/bin/python scripts/fuzz_filters.py FIRST_SEED LAST_SEED [--timeout S]
+Seeds run from FIRST_SEED up to LAST_SEED, which is left out (as in range()).
 Seed s picks a filter (s % 5: features, remesh, union, healing, quad subdivision), an input
 (s // 5 % 20: a shared mesh as it is, scaled to 1e150 or 1e-150, with a NaN or an infinite
 coordinate, every face a repeated corner, a non-manifold fan, duplicated faces, two faces, three

@@ -3,6 +3,7 @@
 PyMeshLabException) within a time limit, never crash or hang.
 
 Usage: .venv/bin/python scripts/fuzz_remesh.py FIRST_SEED LAST_SEED [--timeout S]
+Seeds run from FIRST_SEED up to LAST_SEED, which is left out (as in range()).
 Seed s damages one shared mesh (s % 4: fandisk, part, bunny, blade) in one way (s % 7):
 drop 20% of the faces, noise of 1% of the diagonal on every vertex, reversed copies of 10% of
 the faces, every 30th vertex moved onto the next (zero-area faces), keep 5% of the faces,

@@ -2,6 +2,7 @@
 """Random unions with many degenerate contacts, checked against manifold3d.
 
 Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex | --selfcrossing | --models]
+Seeds run from FIRST_SEED up to LAST_SEED, which is left out (as in range()).
 Each seed builds 2-7 bodies of one kind: grid-aligned cubes (coplanar faces, shared edges,
 touching), spheres on a 0.1 grid (identical copies, touching poles), subdivided cubes and
 spheres on a quarter grid, spheres of several radii sharing centres and poles, randomly rotated
