@@ -17,7 +17,7 @@ namespace mr::surface_union {
 /// condition holds (the ends share only the corners opposite the edge). The edge's two
 /// faces go. An edge without length changes no other face's shape; otherwise the faces
 /// that move (by those few units) are checked exactly against every face near them first:
-/// none may turn over, degenerate or cross another. Line flags of the two sides that
+/// none may turn over, degenerate (unless it had no area already) or cross another. Line flags of the two sides that
 /// become one are joined. Faces, `cut` and line flags are compacted, and vertices no face
 /// uses dropped. Only cut faces are looked for such edges (an input face has distinct
 /// corners, so one end at least is a crossing). Returns the number of vertices merged
