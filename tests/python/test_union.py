@@ -772,6 +772,17 @@ def _nearly_coincident_blobs(seed):
     return parts
 
 
+def _unite_nearly_coincident_blobs(seed, sliver_angle):
+    """The union of seed's blobs, one layer each: the MeshSet, manifold3d's volume, the dictionary."""
+    parts = _nearly_coincident_blobs(seed)
+    ms = pymeshlab.MeshSet()
+    for v, f in parts:
+        ms.add_mesh(pymeshlab.Mesh(v, f))
+    ref = reference([ms.mesh(i) for i in range(len(parts))])
+    r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle)
+    return ms, ref, r
+
+
 def _assert_rounding_left_no_fault(ms, ref, sliver_angle):
     """The union layer has no face without area or with two corners at one place, no face
     that MeshLab flags and exact rationals confirm, is closed and manifold, and has the
@@ -800,12 +811,7 @@ def test_bug_caps_rounded_onto_their_side_crossed_their_neighbours(seed, sliver_
     # and the exact re-check agreed), with or without the sliver step. Such caps are now
     # removed: split into their neighbour, or the two chains along the edge zipped, or, with
     # the apexes at one place, merged (rounded_caps.h).
-    parts = _nearly_coincident_blobs(seed)
-    ms = pymeshlab.MeshSet()
-    for v, f in parts:
-        ms.add_mesh(pymeshlab.Mesh(v, f))
-    ref = reference([ms.mesh(i) for i in range(len(parts))])
-    r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle)
+    ms, ref, r = _unite_nearly_coincident_blobs(seed, sliver_angle)
     assert r["rounded_caps_split"] > 0
     _assert_rounding_left_no_fault(ms, ref, sliver_angle)
     m = ms.current_mesh()
@@ -820,12 +826,7 @@ def test_bug_a_cluster_of_rounded_crossings_beside_a_face_without_area_is_merged
     # because such a face had no turn to keep, which left two faces with two corners at one
     # place (and a smallest angle of 0 after the sliver step). A face without area may now
     # come out either way; the fold and crossing tests still hold it.
-    parts = _nearly_coincident_blobs(112943)
-    ms = pymeshlab.MeshSet()
-    for v, f in parts:
-        ms.add_mesh(pymeshlab.Mesh(v, f))
-    ref = reference([ms.mesh(i) for i in range(len(parts))])
-    r = unite(ms, bodies=LAYERS, sliver_angle=sliver_angle)
+    ms, ref, r = _unite_nearly_coincident_blobs(112943, sliver_angle)
     assert r["rounded_edges_merged"] > 0
     m = ms.current_mesh()
     v, f = m.vertex_matrix(), m.face_matrix()
