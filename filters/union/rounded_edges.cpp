@@ -193,8 +193,9 @@ private:
 
   /// The kept faces, members renamed to `rep` (old_ holds them before), keep their turn in
   /// the projection across their largest normal component, strictly, so none turns over or
-  /// degenerates (one without area before has no turn to keep); none folds onto a neighbour across a side (coplanar, on the same side of
-  /// it); and none meets another face but along what they share (exact; face_clearance.h).
+  /// degenerates (one without area before has no turn to keep); none folds onto a neighbour
+  /// across a side (coplanar, on the same side of it); and none meets another face but along
+  /// what they share (exact; face_clearance.h).
   /// Faces whose corners stayed where they were are left out of the first two tests.
   bool moved_faces_clear(int rep) {
     moved_.clear();

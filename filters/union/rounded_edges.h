@@ -17,11 +17,11 @@ namespace mr::surface_union {
 /// condition holds (the ends share only the corners opposite the edge). The edge's two
 /// faces go. An edge without length changes no other face's shape; otherwise the faces
 /// that move (by those few units) are checked exactly against every face near them first:
-/// none may turn over, degenerate (unless it had no area already) or cross another. Line flags of the two sides that
-/// become one are joined. Faces, `cut` and line flags are compacted, and vertices no face
-/// uses dropped. Only cut faces are looked for such edges (an input face has distinct
-/// corners, so one end at least is a crossing). Returns the number of vertices merged
-/// away; an edge whose ends fail the checks is left as it is.
+/// none may turn over, degenerate (unless it had no area already) or cross another. Line
+/// flags of the two sides that become one are joined. Faces, `cut` and line flags are
+/// compacted, and vertices no face uses dropped. Only cut faces are looked for such edges
+/// (an input face has distinct corners, so one end at least is a crossing). Returns the
+/// number of vertices merged away; an edge whose ends fail the checks is left as it is.
 int merge_rounded_together(Result& r, std::vector<char>& cut);
 
 /// 4 units in the last place of the largest coordinate of `r`: how far apart rounding to
