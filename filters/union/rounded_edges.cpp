@@ -213,12 +213,18 @@ private:
         old_q[z] = at(old_[size_t(i)][size_t(z)]);
       }
       const int k = largest_normal_axis(old_q), a = (k + 1) % 3, b = (k + 2) % 3;
-      // A face rounding had left without area (corners on one line) has no turn to keep: it
-      // may come out either way or stay flat, and the fold and crossing tests below still
-      // hold it (fuzz seed 112943: four crossings within a few units, each merge refused
-      // for such a face, left two faces with two corners at one place).
-      const int before = orient2d(old_q[0].data(), old_q[1].data(), old_q[2].data(), a, b);
-      if (before != 0 && orient2d(q[0].data(), q[1].data(), q[2].data(), a, b) != before) return false;
+      // The turn is kept in the first projection, from k's on, where the face had one. One
+      // without area in all three (corners on one line, as rounding can leave them) has no
+      // turn to keep: it may come out either way or stay flat, and the fold and crossing
+      // tests below still hold it (fuzz seed 112943: four crossings within a few units, each
+      // merge refused for such a face, left two faces with two corners at one place).
+      for (int n = 0; n < 3; ++n) {
+        const int pa = (k + n + 1) % 3, pb = (k + n + 2) % 3;
+        const int before = orient2d(old_q[0].data(), old_q[1].data(), old_q[2].data(), pa, pb);
+        if (before == 0) continue;
+        if (orient2d(q[0].data(), q[1].data(), q[2].data(), pa, pb) != before) return false;
+        break;
+      }
       // Folds: across each side (x, y), the neighbour's third corner coplanar with the
       // face and on the side of xy where the face's own third corner is. One the face had
       // before the merge, across the same side, does not refuse it (nearly coincident
