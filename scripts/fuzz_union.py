@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Random unions with many degenerate contacts, checked against manifold3d.
 
-Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex | --selfcrossing | --models]
+Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex | --selfcrossing | --models] [--params]
 Seeds run from FIRST_SEED up to LAST_SEED, which is left out (as in range()).
 Each seed builds 2-7 bodies of one kind: grid-aligned cubes (coplanar faces, shared edges,
 touching), spheres on a 0.1 grid (identical copies, touching poles), subdivided cubes and
@@ -13,6 +13,9 @@ With --models the bodies are one of the shared CAD and organic models (cad/joint
 cad/fandisk.obj, organic/rocker-arm.obj, beside the repository) and one or two copies of it
 turned at random, by quarter turns (nearly coincident faces where the model is symmetric) or
 only shifted on a grid.
+With --params the run with the sliver step draws its parameters from the seed instead of the
+defaults (sliver angle 1-59 deg, deviation 1e-5 to 1e-1 of the diagonal, volume budget 1e-9 to
+1e-3), and the volume must then be within the budget drawn.
 With --selfcrossing one body is a blob and a shifted copy of it in one layer (it crosses
 itself), among good blobs cut by it: the union must refuse it by name, whatever its steps did
 with it meanwhile (the self-intersection check runs beside the sliver step), and not crash.
@@ -217,12 +220,24 @@ def crossing_faults(ms):
     return coincident, len(exactly_intersecting_faces(v, f, flagged))
 
 
+def sliver_params(seed, drawn):
+    """The sliver step's parameters for the seed: the defaults, or drawn at random (--params)."""
+    if not drawn:
+        return {"sliver_angle": 10.0}, 1.01e-6
+    rng = np.random.default_rng(seed + 7_000_003)
+    budget = float(10 ** rng.uniform(-9, -3))
+    return {"sliver_angle": float(rng.uniform(1, 59)),
+            "sliver_max_deviation": float(10 ** rng.uniform(-5, -1)),
+            "sliver_max_volume_change": budget}, budget * 1.01 + 1e-12
+
+
 def main():
     first, last = int(sys.argv[1]), int(sys.argv[2])
     if "--selfcrossing" in sys.argv[3:]:
         return check_refused(first, last)
     nonconvex = "--nonconvex" in sys.argv[3:]
     models = load_models() if "--models" in sys.argv[3:] else None
+    drawn = "--params" in sys.argv[3:]
     cube, sphere, cube2 = shapes()
     ms = pymeshlab.MeshSet()
     ms.create_torus(hradius=0.6, vradius=0.2, hsubdiv=24, vsubdiv=12)
@@ -236,12 +251,13 @@ def main():
         else:
             kind, parts = case(seed, cube, sphere, cube2)
         ref = reference(parts)
-        for sliver, tol in ((0.0, 1e-9), (10.0, 1.01e-6)):
+        params, budget = sliver_params(seed, drawn)
+        for sliver, tol in ((0.0, 1e-9), (params["sliver_angle"], budget)):
             ms = pymeshlab.MeshSet()
             for v, f in parts:
                 ms.add_mesh(pymeshlab.Mesh(v, f))
             try:
-                ms.generate_surface_intersection_union(bodies=0, sliver_angle=sliver)
+                ms.generate_surface_intersection_union(bodies=0, **(params if sliver > 0 else {"sliver_angle": 0.0}))
             except pymeshlab.PyMeshLabException as e:
                 print(f"seed {seed} kind {kind} sliver {sliver}: {e}")
                 bad += 1
