@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Random unions with many degenerate contacts, checked against manifold3d.
 
-Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex | --selfcrossing | --models] [--params]
+Usage: .venv/bin/python scripts/fuzz_union.py FIRST_SEED LAST_SEED [--nonconvex | --selfcrossing | --models] [--params] [--transform]
 Seeds run from FIRST_SEED up to LAST_SEED, which is left out (as in range()).
 Each seed builds 2-7 bodies of one kind: grid-aligned cubes (coplanar faces, shared edges,
 touching), spheres on a 0.1 grid (identical copies, touching poles), subdivided cubes and
@@ -16,6 +16,10 @@ only shifted on a grid.
 With --params the run with the sliver step draws its parameters from the seed instead of the
 defaults (sliver angle 1-59 deg, deviation 1e-5 to 1e-1 of the diagonal, volume budget 1e-9 to
 1e-3), and the volume must then be within the budget drawn.
+With --transform the bodies are scaled by 2^k (k from -60 to 60: exact) and moved 10 to 1e5 times
+their scale away from the origin (the one rounding), so the exact predicates meet wide exponent
+spreads. Volumes and crossings are measured on the results moved back and scaled down again,
+which is exact there (Sterbenz), so the checks keep their tolerances.
 With --selfcrossing one body is a blob and a shifted copy of it in one layer (it crosses
 itself), among good blobs cut by it: the union must refuse it by name, whatever its steps did
 with it meanwhile (the self-intersection check runs beside the sliver step), and not crash.
@@ -231,6 +235,31 @@ def sliver_params(seed, drawn):
             "sliver_max_volume_change": budget}, budget * 1.01 + 1e-12
 
 
+def far_transform(seed, drawn):
+    """(scale, offset) for --transform, or None: a power of two, and an offset of 10-1e5 scales
+    whose components are each within a factor two of the coordinates near it."""
+    if not drawn:
+        return None
+    rng = np.random.default_rng(seed + 9_000_011)
+    scale = 2.0 ** int(rng.integers(-60, 61))
+    offset = scale * 10 ** rng.uniform(1, 5) * rng.uniform(1.5, 2, 3) * rng.choice([-1.0, 1.0], 3)
+    return scale, offset
+
+
+def moved(parts, transform):
+    if transform is None:
+        return parts
+    scale, offset = transform
+    return [(v * scale + offset, f) for v, f in parts]
+
+
+def moved_back(v, transform):
+    if transform is None:
+        return v
+    scale, offset = transform
+    return (v - offset) / scale
+
+
 def main():
     first, last = int(sys.argv[1]), int(sys.argv[2])
     if "--selfcrossing" in sys.argv[3:]:
@@ -238,6 +267,7 @@ def main():
     nonconvex = "--nonconvex" in sys.argv[3:]
     models = load_models() if "--models" in sys.argv[3:] else None
     drawn = "--params" in sys.argv[3:]
+    far = "--transform" in sys.argv[3:]
     cube, sphere, cube2 = shapes()
     ms = pymeshlab.MeshSet()
     ms.create_torus(hradius=0.6, vradius=0.2, hsubdiv=24, vsubdiv=12)
@@ -250,11 +280,14 @@ def main():
             kind, parts = nonconvex_case(seed, sphere, torus)
         else:
             kind, parts = case(seed, cube, sphere, cube2)
+        transform = far_transform(seed, far)
+        far_parts = moved(parts, transform)
+        parts = [(moved_back(v, transform), f) for v, f in far_parts]  # what the union gets, near
         ref = reference(parts)
         params, budget = sliver_params(seed, drawn)
         for sliver, tol in ((0.0, 1e-9), (params["sliver_angle"], budget)):
             ms = pymeshlab.MeshSet()
-            for v, f in parts:
+            for v, f in far_parts:
                 ms.add_mesh(pymeshlab.Mesh(v, f))
             try:
                 ms.generate_surface_intersection_union(bodies=0, **(params if sliver > 0 else {"sliver_angle": 0.0}))
@@ -262,6 +295,11 @@ def main():
                 print(f"seed {seed} kind {kind} sliver {sliver}: {e}")
                 bad += 1
                 continue
+            if transform is not None:  # measured near the origin, where MeshLab's measures work
+                m = ms.current_mesh()
+                near = pymeshlab.MeshSet()
+                near.add_mesh(pymeshlab.Mesh(moved_back(m.vertex_matrix(), transform), m.face_matrix()))
+                ms = near
             topo = ms.get_topological_measures()
             volume = ms.get_geometric_measures().get("mesh_volume", float("nan"))
             err = abs(volume / ref - 1)

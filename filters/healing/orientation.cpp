@@ -42,10 +42,13 @@ Orientation orient_consistently(Soup& s, bool outward) {
     for (int f : component) flipped += flip[f];
     bool invert;
     if (closed && outward) {
-      double volume = 0;  // six times the signed volume, with the flips applied
+      // Six times the signed volume, with the flips applied, about a vertex of the part
+      // (about the origin, a part far from it cancels to noise).
+      double volume = 0;
+      const auto o = s.pos[s.tri[component[0]][0]];
       for (int f : component) {
         const auto& t = s.tri[f];
-        const double v = s.pos[t[0]] * (s.pos[t[1]] ^ s.pos[t[2]]);
+        const double v = (s.pos[t[0]] - o) * ((s.pos[t[1]] - o) ^ (s.pos[t[2]] - o));
         volume += flip[f] ? -v : v;
       }
       invert = volume < 0;

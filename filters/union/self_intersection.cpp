@@ -144,10 +144,16 @@ bool star_shaped(const Body& b, const EdgeTable& edges, bool outward) {
 }  // namespace
 
 bool faces_outward(const Body& b) {
+  if (b.faces.empty()) return true;
+  // The volume about a vertex of the body, not the origin: far from the origin the
+  // terms about it are offset^2 x size and cancel to noise (a sphere 1e5 of its sizes
+  // away came out inward).
+  const V3 o = b.vertices[size_t(b.faces[0][0])];
   double vol = 0;
   for (const auto& f : b.faces) {
-    const auto &p = b.vertices[size_t(f[0])], &q = b.vertices[size_t(f[1])], &r = b.vertices[size_t(f[2])];
-    vol += p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) + p[2] * (q[0] * r[1] - q[1] * r[0]);
+    const V3 p = sub3(b.vertices[size_t(f[0])], o), q = sub3(b.vertices[size_t(f[1])], o),
+             r = sub3(b.vertices[size_t(f[2])], o);
+    vol += dot(p, cross(q, r));
   }
   return vol >= 0;
 }

@@ -1638,8 +1638,11 @@ namespace {
 constexpr size_t kMinSliversForParts = 4000;
 
 Limits limits_of(const Result& r, double max_deviation, double max_volume_change) {
+  // About a vertex of the surface, not the origin (far from it the terms cancel to noise).
   double volume = 0;
-  for (const auto& t : r.faces) volume += dot(r.vertices[t[0]], cross(r.vertices[t[1]], r.vertices[t[2]])) / 6;
+  const V3 o = r.faces.empty() ? V3{0, 0, 0} : r.vertices[size_t(r.faces[0][0])];
+  for (const auto& t : r.faces)
+    volume += dot(sub3(r.vertices[t[0]], o), cross(sub3(r.vertices[t[1]], o), sub3(r.vertices[t[2]], o))) / 6;
   V3 lo = r.vertices.empty() ? V3{0, 0, 0} : r.vertices[0], hi = lo;
   for (const auto& p : r.vertices)
     for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], p[k]); hi[k] = std::max(hi[k], p[k]); }

@@ -115,6 +115,24 @@ TEST(PatchHealing, FlippedPatchesEndOutward) {
   EXPECT_NEAR(test::signed_volume(Healed(r).mesh), 8.0, 1e-9);
 }
 
+TEST(PatchHealing, FlippedPatchesFarFromTheOriginEndOutward) {
+  // Far from the origin the signed volume about it cancels to noise and chose the
+  // orientation at random; it is now taken about a vertex of the part.
+  test::BoxPatches spec;
+  spec.flip = {true, true, false, true, true, false};
+  TriMesh m;
+  std::vector<int> patches;
+  test::box_patches(m, patches, spec);
+  const Point3 far(3.3e7 + 0.37, -2.1e7 + 0.61, 1.7e7 + 0.23);
+  for (auto& v : m.vert) v.P() += far;
+  const auto r = healing::heal(m, patches, with_tolerance(1e-3));
+  Healed healed(r);
+  for (auto& v : healed.mesh.vert) v.P() -= far;
+  EXPECT_EQ(r.boundary_edges_after, 0);
+  EXPECT_EQ(r.orientation_conflicts, 0);
+  EXPECT_NEAR(test::signed_volume(healed.mesh), 8.0, 1e-6);
+}
+
 TEST(PatchHealing, CubeSeamsAreFeaturesAndFacesGroupBySide) {
   // A closed cube split along its 12 edges and along a flat seam in the middle
   // of every face: 12 patches, 6 groups, the 12 cube edges as feature lines.

@@ -437,6 +437,30 @@ TEST(UnionCases, SliverStepKeepsClosedAndWithinVolumeBudget) {
   EXPECT_EQ(improved.lines.size(), raw.lines.size());
 }
 
+TEST(UnionCases, BodiesFarFromTheOriginKeepTheirOrientationAndVolumeBudget) {
+  // Found by fuzz_union.py --transform: far from the origin the signed volume about it is a
+  // sum of terms offset^2 x size that cancel to noise, so a sphere 1e6 of its sizes away was
+  // taken for inward (turned inside out) and the sliver step's volume budget was noise.
+  TriMesh m;
+  test::sphere(m, 3);
+  const double o[3] = {1.5e6, -2.25e6, 1.25e6};  // far, yet every shift below is exact
+  const Body near_a = make_body(m), near_b = make_body(m, 0.75, 0.25, 0);
+  const Body far_a = make_body(m, o[0], o[1], o[2]), far_b = make_body(m, o[0] + 0.75, o[1] + 0.25, o[2]);
+  EXPECT_TRUE(faces_outward(far_a));
+  Body inward = far_a;
+  for (auto& f : inward.faces) std::swap(f[1], f[2]);
+  EXPECT_FALSE(faces_outward(inward));
+  for (double sliver : {0.0, 10.0}) {
+    const Result near = unite({near_a, near_b}, sliver);
+    Result far = unite({far_a, far_b}, sliver);
+    expect_closed(far);
+    for (auto& p : far.vertices)
+      for (int k = 0; k < 3; ++k) p[k] -= o[k];  // exact: the points lie within a factor 2 of o
+    EXPECT_NEAR(volume(far) / volume(near), 1.0, 1e-6) << sliver;
+    EXPECT_GT(volume(far), volume(near_a)) << sliver;
+  }
+}
+
 TEST(UnionCases, SameResultOnOneThreadAndOnSeveral) {
   // The pair tests, crossings and cut-face triangulations run in parallel and are merged
   // in a fixed order: the output must not depend on the thread count.
