@@ -2,6 +2,7 @@
 
 #include "common/coherent_orientation.h"
 #include "common/errors.h"
+#include "common/exact_shift.h"
 #include "common/mesh_validation.h"
 #include "features/feature_lines.h"
 #include "remesh/advancing_front.h"
@@ -259,10 +260,8 @@ const TriMesh& coherently_oriented(const TriMesh& input, TriMesh& copy) {
   return copy;
 }
 
-}  // namespace
-
-Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
-  require_triangle_surface(given);
+/// The regridding itself, on an input that lies about as close to the origin as it is large.
+Result remesh_near_origin(const TriMesh& given, const Params& params, TriMesh& output) {
   require_no_duplicate_faces(given);
   require_some_area(given);
   TriMesh oriented;
@@ -355,6 +354,27 @@ Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
   result.hausdorff = m.hausdorff;
   build_output(out, ff.feature_edges, output);
   progress(params, 100, "Done");
+  return result;
+}
+
+}  // namespace
+
+Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
+  require_triangle_surface(given);  // finite coordinates before the box is taken
+  Box3 box;
+  for (const auto& v : given.vert) box.Add(v.cP());
+  // Far from the origin the tolerances scaled by the element size meet rounding noise
+  // (fandisk 1e5 diagonals away left a patch unmeshed); the shift is exact, and the
+  // corners and line ends come back bit for bit.
+  const Point3 shift = exact_shift_towards_origin(box);
+  if (shift == Point3(0, 0, 0)) return remesh_near_origin(given, params, output);
+  TriMesh near;
+  vcg::tri::Append<TriMesh, TriMesh>::MeshCopyConst(near, given);  // flags (selected edges) too
+  shift_vertices(near, shift);
+  Params near_params = params;
+  for (auto& p : near_params.source_points) p -= shift;
+  const Result result = remesh_near_origin(near, near_params, output);
+  shift_vertices(output, -shift);
   return result;
 }
 

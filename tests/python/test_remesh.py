@@ -430,6 +430,32 @@ def test_input_with_flipped_faces_is_remeshed_as_if_it_were_oriented():
     assert np.array_equal(results[0][0], results[1][0]) and np.array_equal(results[0][1], results[1][1])
 
 
+def test_bug_fandisk_far_from_the_origin_is_meshed_as_near_it():
+    # fandisk moved 1e5 of its diagonals away (coordinates near 1e6, as in UTM frames) left a
+    # patch unmeshed, two sides open and a 10.3 degree face: the tolerances scaled by the element
+    # size met rounding noise. The core now shifts such an input next to the origin, exactly, so
+    # the input's corners come back bit for bit.
+    src = load("cad/fandisk.obj")
+    v, f = src.current_mesh().vertex_matrix(), src.current_mesh().face_matrix()
+    diagonal = np.linalg.norm(v.max(0) - v.min(0))
+    far = v + np.array([1.3, -0.7, 0.9]) * 1e5 * diagonal
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(far, f))
+    before = snapshot(ms.current_mesh())
+    r = ms.meshing_advancing_front_remesh()
+    assert_unchanged(before, ms.mesh(0))
+    assert r["unmeshed_sides"] == 0 and r["unmeshed_patches"] == 0 and r["retried_patches"] == 0
+    assert r["min_angle"] > 19.0  # 19.38 near the origin, 10.3 before the shift
+    assert r["hausdorff_rel"] < 1.5e-3  # 1.0e-3 near the origin
+    out = ms.current_mesh()
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"] and edges(out)[1]
+    corners = out.vertex_matrix()[out.vertex_custom_scalar_attribute_array("point_kind") == 2]
+    assert len(corners) == r["corners"] == 25
+    kept = {tuple(p) for p in far}
+    assert all(tuple(c) in kept for c in corners)  # bit for bit
+
+
 def test_damaged_input_that_no_front_can_close_returns_and_reports_it():
     # Fuzzing found this: blade.off with every 30th vertex (random, seed 3) moved onto the next
     # one: about 150 zero-area faces and folds. At 5% and 20 degrees 1500 front sides of one

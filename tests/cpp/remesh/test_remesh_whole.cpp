@@ -3,6 +3,8 @@
 #include "remesh/remesh.h"
 #include "shapes.h"
 
+#include <vcg/complex/append.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -160,4 +162,38 @@ TEST(RemeshWhole, ThinPlateRimsGetStaggeredPointsAcrossTheirStrips) {
   EXPECT_EQ(t.misoriented_edges, 0);
   EXPECT_EQ(t.euler, 2);
   EXPECT_GE(run_.r.min_angle_deg, 3.9);
+}
+
+TEST(RemeshWhole, ShapesFarFromTheOriginStayClosedAndKeepTheirCornersBitForBit) {
+  // Far from the origin (here 1e6-1e7 sizes away, as in UTM coordinates) the core shifts the
+  // input next to the origin, exactly, and back: the cube's corners are its input vertices
+  // bit for bit (the regression on a real model, fandisk, is in test_remesh.py).
+  TriMesh cube, cylinder;
+  test::cube(cube, 2);
+  test::cylinder(cylinder, 48, 12, 1.0, 3.0);
+  const Point3 far(3.1e6 + 0.37, -2.7e7 - 0.61, 1.9e6 + 0.23);
+  for (TriMesh* shape : {&cube, &cylinder}) {
+    TriMesh moved;
+    vcg::tri::Append<TriMesh, TriMesh>::MeshCopyConst(moved, *shape);
+    for (auto& v : moved.vert) v.P() += far;  // rounded: the far cube is no longer exactly flat
+    RemeshRun far_run;
+    run(moved, 0.1, far_run);
+    EXPECT_EQ(far_run.r.unmeshed_sides, 0);
+    EXPECT_EQ(far_run.r.retried_patches, 0);
+    const Topology t = topology(far_run.mesh);
+    EXPECT_EQ(t.boundary_edges, 0);
+    EXPECT_EQ(t.non_manifold_edges, 0);
+    EXPECT_EQ(t.misoriented_edges, 0);
+    EXPECT_EQ(t.euler, 2);
+    EXPECT_GE(far_run.r.min_angle_deg, 28.0);  // 39.1 and 42.6 near the origin, 30.8 and 32.7 here
+    int corners = 0;
+    for (const auto& v : far_run.mesh.vert)
+      if (v.IsS()) {
+        ++corners;
+        bool found = false;
+        for (const auto& w : moved.vert) found = found || w.cP() == v.cP();
+        EXPECT_TRUE(found);
+      }
+    EXPECT_EQ(corners, shape == &cube ? 8 : 0);
+  }
 }
