@@ -274,7 +274,7 @@ private:
         const int patch = out_.face_patch[vertex_faces_[v].front()];
         const Point3 normal = out_.host[v] >= 0 ? s.face_normal[out_.host[v]] : Point3(0, 0, 0);
         const Projection pr =
-            locator_.locate(centre, patch, normal, out_.host[v], (centre - out_.points[v]).Norm() * 2 + 1e-12);
+            locator_.locate(centre, patch, normal, out_.host[v], (centre - out_.points[v]).Norm() * 2 + locator_.rounding_length());
         if (pr.face < 0) continue;
         out_.points[v] = pr.point;
         out_.host[v] = pr.face;

@@ -313,7 +313,7 @@ int relax_edge_lengths(OutputMesh& out, const SurfaceLocator& locator, const Siz
     const Point3 normal = s.face_normal[out.host[v]];
     for (double t : {1.0, 0.5, 0.25}) {
       const Point3 want = old + (aim - old) * t;
-      const Projection pr = locator.locate(want, patch, normal, out.host[v], (want - old).Norm() * 2 + 1e-12);
+      const Projection pr = locator.locate(want, patch, normal, out.host[v], (want - old).Norm() * 2 + locator.rounding_length());
       if (pr.face < 0) continue;
       const auto after_fit = misfit(pr.point);
       if (after_fit >= before_fit) continue;

@@ -132,7 +132,7 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vecto
     }
     centre /= double(count);
     const Point3 normal = out.host[v] >= 0 ? s.face_normal[out.host[v]] : Point3(0, 0, 0);
-    const Projection pr = locator.locate(centre, patch, normal, out.host[v], (centre - out.points[v]).Norm() * 2 + 1e-12);
+    const Projection pr = locator.locate(centre, patch, normal, out.host[v], (centre - out.points[v]).Norm() * 2 + locator.rounding_length());
     if (pr.face < 0) continue;
     const Point3 old = out.points[v];
     out.points[v] = pr.point;

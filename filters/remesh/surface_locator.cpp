@@ -66,6 +66,7 @@ SurfaceLocator::SurfaceLocator(const Surface& surface, double cell) : surface_(s
   for (const auto& p : surface.points) box.Add(p);
   origin_ = box.min;
   const double diag = std::max(box.Diag(), 1e-300);
+  rounding_length_ = 1e-12 * diag;
   cell_ = std::max(cell, diag * 1e-4);
   // Enlarge cells until the bounding-box cell count of all faces is affordable.
   for (int attempt = 0; attempt < 40; ++attempt) {
@@ -162,8 +163,9 @@ double SurfaceLocator::consider_face(int f, const Point3& p, const Point3& norma
   const auto& t = s.faces[f];
   const Point3 q = closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary);
   const double d = (q - p).Norm();
-  const bool better = d < best.distance - 1e-12 * (1 + d) ||
-                      (d <= best.distance + 1e-12 * (1 + d) && best.face >= 0 && normal.SquaredNorm() > 0 &&
+  const double tie = rounding_length_ + 1e-12 * d;
+  const bool better = d < best.distance - tie ||
+                      (d <= best.distance + tie && best.face >= 0 && normal.SquaredNorm() > 0 &&
                        s.face_normal[f] * normal > s.face_normal[best.face] * normal);
   if (better) { best.face = f; best.point = q; best.bary = bary; best.distance = d; }
   return d;

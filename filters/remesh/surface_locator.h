@@ -67,6 +67,9 @@ public:
 
   const Surface& surface() const { return surface_; }
   double cell() const { return cell_; }
+  /// A length at the rounding level of the surface (1e-12 of its diagonal): search radii and
+  /// distance ties use it, so that the result does not depend on the model's unit.
+  double rounding_length() const { return rounding_length_; }
 
 private:
   using Key = std::int64_t;
@@ -77,6 +80,7 @@ private:
 
   const Surface& surface_;
   double cell_;
+  double rounding_length_;
   double mean_face_area_ = 0;
   Point3 origin_;
   std::unordered_map<Key, std::vector<int>> grid_;
