@@ -7,6 +7,7 @@ A screenshot of the Filters menu is kept in test-artifacts/.
 import os
 import pathlib
 import re
+import select
 import shutil
 import subprocess
 import time
@@ -85,6 +86,33 @@ class MeshLabWindow:
         self.click(x + (3 * w // 4 if which == "Apply" else w // 4), y + h - 23)
 
 
+def start_xvfb(log_path, timeout=60.0):
+    """Starts Xvfb on a free display; returns (process, display number) once it accepts clients.
+
+    Xvfb's -displayfd writes the number only when the server is ready. Waiting for its socket
+    file instead let MeshLab start too early on a fresh machine ("could not connect to display")."""
+    read_end, write_end = os.pipe()
+    with open(log_path, "w") as log:
+        xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1400x900x24", "-nolisten",
+                                 "tcp"], pass_fds=(write_end,), stdout=log, stderr=subprocess.STDOUT)
+    os.close(write_end)
+    answer = b""
+    end = time.monotonic() + timeout
+    with os.fdopen(read_end, "rb", buffering=0) as pipe:
+        while not answer.endswith(b"\n") and time.monotonic() < end:
+            if not select.select([pipe], [], [], 0.5)[0]:
+                continue
+            chunk = pipe.read(16)
+            if not chunk:
+                break  # Xvfb exited
+            answer += chunk
+    if not answer.strip().isdigit():
+        xvfb.kill()
+        xvfb.wait(timeout=30)
+        pytest.fail(f"Xvfb did not start:\n{pathlib.Path(log_path).read_text(errors='replace')[-2000:]}")
+    return xvfb, int(answer)
+
+
 @pytest.fixture(scope="module")
 def meshlab(tmp_path_factory):
     for tool in ("Xvfb", "xdotool", "import"):
@@ -104,10 +132,7 @@ def meshlab(tmp_path_factory):
     (home / "config" / "VCG").mkdir(parents=True)
     # the first start asks about statistics unless this says the question was answered
     (home / "config" / "VCG" / "MeshLab_64bit_dp.conf").write_text("[General]\ninformativeShown=true\n")
-    display = next(n for n in range(90, 200) if not pathlib.Path(f"/tmp/.X{n}-lock").exists())
-    xvfb = subprocess.Popen(["Xvfb", f":{display}", "-screen", "0", "1400x900x24", "-nolisten", "tcp"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    wait_for(lambda: pathlib.Path(f"/tmp/.X11-unix/X{display}").exists(), 30, "Xvfb")
+    xvfb, display = start_xvfb(home / "xvfb.log")
     env = {**os.environ, "DISPLAY": f":{display}", "XDG_DATA_HOME": str(home / "data"),
            "XDG_CONFIG_HOME": str(home / "config"), "HOME": str(home)}
     env.pop("QT_QPA_PLATFORM", None)
@@ -122,9 +147,13 @@ def meshlab(tmp_path_factory):
         yield window
     finally:
         app.kill()
-        xvfb.kill()
         app.wait(timeout=30)
-        xvfb.wait(timeout=30)
+        xvfb.terminate()  # (not killed: it then removes its lock and socket)
+        try:
+            xvfb.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            xvfb.kill()
+            xvfb.wait(timeout=30)
 
 
 def menu_names():
