@@ -10,11 +10,13 @@
 
 namespace mr::surface_union {
 
-/// Output faces of `r` whose smallest angle is below `angle_deg` and below the smallest
+/// The output faces of `r` (indices, ascending) whose smallest angle is below `angle_deg` and below the smallest
 /// angle of their input face (`r.face_source`, an index into all `bodies`' faces in order).
 /// After the sliver step a face's source is the input face its slot came from, within
 /// the deviation bound of it: the count then compares with a neighbour's shape at worst.
 /// A flat flip's two faces lie across both old ones and take the worse one's source.
+std::vector<int> find_slivers_left(const Result& r, const std::vector<Body>& bodies, double angle_deg);
+/// How many faces find_slivers_left finds.
 int count_slivers_left(const Result& r, const std::vector<Body>& bodies, double angle_deg);
 
 }  // namespace mr::surface_union

@@ -321,7 +321,8 @@ void unite_valid_bodies(const std::vector<Body>& bodies, const Params& params, R
   r.intersection_edges /= 2;
   chain_lines(r);
   r.min_angle_deg = min_angle_deg(r.vertices, r.faces);
-  r.slivers_left = count_slivers_left(r, bodies, kReportedSliverDeg);
+  r.slivers_left_faces = find_slivers_left(r, bodies, kReportedSliverDeg);
+  r.slivers_left = int(r.slivers_left_faces.size());
 }
 
 }  // namespace

@@ -68,6 +68,7 @@ struct Result {
   int rounded_edges_merged = 0;                   ///< vertices merged away where rounding left edges without length or next to none (rounded_edges.h)
   double min_angle_deg = 0;                       ///< smallest angle in the output
   int slivers_left = 0;                           ///< output faces under kReportedSliverDeg worse than the input face they lie in (slivers_left.h)
+  std::vector<int> slivers_left_faces;            ///< those faces (indices into faces, ascending)
   double time_pairs_ms = 0, time_intersect_ms = 0, time_retriangulate_ms = 0, time_classify_ms = 0,
          time_slivers_ms = 0, time_total_ms = 0;
 };

@@ -38,7 +38,9 @@ QString FilterSurfaceUnionPlugin::filterInfo(ActionIDType) const {
          "quality improves; the input's own slivers on flat faces (CAD needles) are flipped towards the "
          "Delaunay triangulation of their plane, which moves no point.<br>"
          "The result is a new layer, watertight, manifold and consistently oriented, with the intersection "
-         "lines as the per-face-edge selection; optionally a second layer holds the lines as an edge mesh.<br>"
+         "lines as the per-face-edge selection; optionally a second layer holds the lines as an edge mesh. "
+         "Faces under 5 degrees that are worse than the input face they lie in (slivers the step could not "
+         "mend, counted in slivers_left) are selected, so they can be seen.<br>"
          "For more details see:<br>"
          "<b>A. Shostko, R. Löhner, W. Sandberg</b><br>"
          "<a href=\"https://doi.org/10.1002/(SICI)1097-0207(19990410)44:10%3C1359::AID-NME544%3E3.0.CO;2-B\">"
@@ -183,6 +185,8 @@ std::map<std::string, QVariant> FilterSurfaceUnionPlugin::applyFilter(const QAct
   mr::TriMesh out;
   mr::surface_union::to_tri_mesh(r, out);
   mr::bridge::copy_from_core(out, layer->cm);
+  for (int f : r.slivers_left_faces) layer->cm.face[size_t(f)].SetS();  // (the core keeps the face order)
+  vcg::tri::UpdateSelection<CMeshO>::FaceCount(layer->cm);
   layer->updateBoxAndNormals();
   mr::union_plugin::transfer_attributes(origins, sources, transfer, *layer);
   if (params.getBool("create_lines_layer")) {

@@ -686,8 +686,14 @@ def test_slivers_left_counts_the_cuts_own_slivers_before_the_sliver_step():
     ms, parts = multicomponent("box.STL")
     ms.set_current_mesh(0)
     r = unite(ms, bodies=COMPONENTS, sliver_angle=0)
-    out = angles(ms.mesh(ms.mesh_number() - 1)).min(axis=1)
+    union = ms.mesh(ms.mesh_number() - 1)
+    out = angles(union).min(axis=1)
     assert 1500 <= r["slivers_left"] < (out < 5).sum()
+    # They come selected in the union layer, so they can be seen; the input stays unselected.
+    selected = union.face_selection_array()
+    assert selected.sum() == r["slivers_left"]
+    assert (out[selected] < 5).all()
+    assert ms.mesh(0).selected_face_number() == 0
 
 
 @pytest.mark.parametrize("name,bound", [
