@@ -357,6 +357,16 @@ Result remesh_near_origin(const TriMesh& given, const Params& params, TriMesh& o
   return result;
 }
 
+/// An output without a face is no result: it is said as an error, so that the caller's
+/// document gets no empty layer (a surface flattened onto itself, its two layers folded
+/// together, can leave every front open: blade.off flattened across y, found by fuzzing).
+const Result& require_some_faces(const Result& r, const TriMesh& output) {
+  for (const auto& f : output.face)
+    if (!f.IsD()) return r;
+  throw InvalidInput("no patch could be meshed (" + std::to_string(r.unmeshed_sides) +
+                     " front sides stayed open): the input is probably folded or flat, two layers on top of each other");
+}
+
 }  // namespace
 
 Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
@@ -367,7 +377,7 @@ Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
   // (fandisk 1e5 diagonals away left a patch unmeshed); the shift is exact, and the
   // corners and line ends come back bit for bit.
   const Point3 shift = exact_shift_towards_origin(box);
-  if (shift == Point3(0, 0, 0)) return remesh_near_origin(given, params, output);
+  if (shift == Point3(0, 0, 0)) return require_some_faces(remesh_near_origin(given, params, output), output);
   TriMesh near;
   vcg::tri::Append<TriMesh, TriMesh>::MeshCopyConst(near, given);  // flags (selected edges) too
   shift_vertices(near, shift);
@@ -375,7 +385,7 @@ Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
   for (auto& p : near_params.source_points) p -= shift;
   const Result result = remesh_near_origin(near, near_params, output);
   shift_vertices(output, -shift);
-  return result;
+  return require_some_faces(result, output);
 }
 
 }  // namespace mr::remesh

@@ -408,6 +408,24 @@ def test_bad_input_raises_and_changes_nothing():
     assert_unchanged(before_flat, flat.current_mesh())
 
 
+def test_bug_a_surface_flattened_onto_itself_with_nothing_meshed_is_an_error():
+    # blade.off with every y set to 0 (scripts/fuzz_remesh.py seed 131): its two sides lie on
+    # each other and every front stopped open, so the filter added an empty layer and said so
+    # only in the dictionary (16 open sides, 1 unmeshed patch). Now it is an error, and the
+    # document keeps no empty layer. Flattened across x it still meshes part (111 faces).
+    src = load("cad/blade.off")
+    v, f = src.current_mesh().vertex_matrix().copy(), src.current_mesh().face_matrix()
+    diag = src.current_mesh().bounding_box().diagonal()
+    v[:, 1] = 0
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(v, f))
+    before = snapshot(ms.current_mesh())
+    with raises_on(ms, "no patch could be meshed \\(16 front sides stayed open\\).*folded or flat"):
+        ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(0.02 * diag), ridge_angle=20.0)
+    assert ms.mesh_number() == 1
+    assert_unchanged(before, ms.current_mesh())
+
+
 def test_input_with_flipped_faces_is_remeshed_as_if_it_were_oriented():
     # Every other face flipped (a careless export): the host-face search compares normals and the
     # fronts take their direction from the faces; a fuzzed bunny took 88 s and left sides open.
