@@ -15,7 +15,7 @@ using slivers::CutSurface;
 using slivers::Limits;
 using slivers::Slab;
 using slivers::faces_near_cut;
-constexpr double kPi = 3.14159265358979323846;
+using slivers::kPi;
 }  // namespace
 
 double min_angle_deg(const std::vector<std::array<double, 3>>& v, const std::vector<std::array<int, 3>>& f) {
