@@ -143,6 +143,11 @@ bool Collapser::attempt_flip(int f, int z) {
     keep_cut_distance();
   }
   const FlipUndo undo = flip(f, g, u, v, c, d);
+  // Filed at their new corners before a compensating move's crossing check looks for the
+  // faces near it: filed at the old ones, a flipped face was missed where its box grew, and
+  // a ring vertex moved into it (fuzz_union.py --models --transform --params seed 4528).
+  grid_.add(f);
+  grid_.add(g);
   // Give the volume back by a small move of one free vertex (from the first the plan
   // found: those before it cannot); else it is paid from the budget.
   bool compensated = dv6 == 0;
@@ -154,6 +159,8 @@ bool Collapser::attempt_flip(int f, int z) {
   if (!compensated) {
     if (std::fabs(dv6) / 6 > volume_budget_) {
       unflip(f, g, u, v, c, d, undo);
+      grid_.add(f);
+      grid_.add(g);
       return false;
     }
     volume_budget_ -= std::fabs(dv6) / 6;
