@@ -360,9 +360,9 @@ Result remesh_near_origin(const TriMesh& given, const Params& params, TriMesh& o
 /// An output without a face is no result: it is said as an error, so that the caller's
 /// document gets no empty layer (a surface flattened onto itself, its two layers folded
 /// together, can leave every front open: blade.off flattened across y, found by fuzzing).
-const Result& require_some_faces(const Result& r, const TriMesh& output) {
+void require_some_faces(const TriMesh& output, const Result& r) {
   for (const auto& f : output.face)
-    if (!f.IsD()) return r;
+    if (!f.IsD()) return;
   throw InvalidInput("no patch could be meshed (" + std::to_string(r.unmeshed_sides) +
                      " front sides stayed open): the input is probably folded or flat, two layers on top of each other");
 }
@@ -377,7 +377,11 @@ Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
   // (fandisk 1e5 diagonals away left a patch unmeshed); the shift is exact, and the
   // corners and line ends come back bit for bit.
   const Point3 shift = exact_shift_towards_origin(box);
-  if (shift == Point3(0, 0, 0)) return require_some_faces(remesh_near_origin(given, params, output), output);
+  if (shift == Point3(0, 0, 0)) {
+    const Result result = remesh_near_origin(given, params, output);
+    require_some_faces(output, result);
+    return result;
+  }
   TriMesh near;
   vcg::tri::Append<TriMesh, TriMesh>::MeshCopyConst(near, given);  // flags (selected edges) too
   shift_vertices(near, shift);
@@ -385,7 +389,8 @@ Result remesh(const TriMesh& given, const Params& params, TriMesh& output) {
   for (auto& p : near_params.source_points) p -= shift;
   const Result result = remesh_near_origin(near, near_params, output);
   shift_vertices(output, -shift);
-  return require_some_faces(result, output);
+  require_some_faces(output, result);
+  return result;
 }
 
 }  // namespace mr::remesh

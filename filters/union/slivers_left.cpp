@@ -34,8 +34,4 @@ std::vector<int> find_slivers_left(const Result& r, const std::vector<Body>& bod
   return left;
 }
 
-int count_slivers_left(const Result& r, const std::vector<Body>& bodies, double angle_deg) {
-  return int(find_slivers_left(r, bodies, angle_deg).size());
-}
-
 }  // namespace mr::surface_union

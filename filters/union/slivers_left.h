@@ -16,7 +16,5 @@ namespace mr::surface_union {
 /// the deviation bound of it: the count then compares with a neighbour's shape at worst.
 /// A flat flip's two faces lie across both old ones and take the worse one's source.
 std::vector<int> find_slivers_left(const Result& r, const std::vector<Body>& bodies, double angle_deg);
-/// How many faces find_slivers_left finds.
-int count_slivers_left(const Result& r, const std::vector<Body>& bodies, double angle_deg);
 
 }  // namespace mr::surface_union
