@@ -52,6 +52,10 @@ bool is_shape_ridge(const TriMesh& mesh, const EdgeTable& edges, const std::vect
   return na * nb < cos_ridge;
 }
 
+// Sharper than this (the cosine between the faces' normals) is a fold for keep_sharp_slivers:
+// the advancing front's normal test (n . n > 0.5) refuses the surface across it.
+constexpr double kCosFold = 0.5;
+
 struct Flood {
   std::vector<int> patch_of_face;
   int count = 0;
@@ -276,11 +280,13 @@ int drop_short_cycles(const TriMesh& mesh, const EdgeTable& edges, const VertexR
 // strip ten times longer than wide), e.g. one sliver input face whose three edges are ridges, as a
 // scan's crease network makes. An element of this size cannot represent them, and keeping them
 // forces their slivers into the output as they stand. Their border ridges go, so they join their
-// neighbours. Small patches of good shape (a small cube's sides) stay.
+// neighbours. Small patches of good shape (a small cube's sides) stay, and with `fold` (per
+// edge, or empty) those bordered by a fold.
 constexpr double kSliverArea = 0.1, kSliverShape = 0.02;
 
 int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
-                       const std::vector<char>& keep, double min_length, Suppressed& s) {
+                       const std::vector<char>& keep, const std::vector<char>& fold, double min_length,
+                       Suppressed& s) {
   const Flood flood = flood_patches(mesh, edges, edge_is_ridge);
   std::vector<double> border(flood.count, 0.0), area(flood.count, 0.0);
   for (size_t f = 0; f < mesh.face.size(); ++f) area[flood.patch_of_face[f]] += 0.5 * vcg::DoubleArea(mesh.face[f]);
@@ -291,7 +297,7 @@ int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector
     for (int k = 0; k < edges.valence(e); ++k) {
       const int patch = flood.patch_of_face[edges.side(e, k).face];
       border[patch] += length;
-      if (keep[e]) fixed[patch] = 1;
+      if (keep[e] || (!fold.empty() && fold[e])) fixed[patch] = 1;
     }
   }
   std::vector<char> island(flood.count, 0);
@@ -321,7 +327,7 @@ int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector
 // borders of small sliver patches. Repeated,
 // since a dropped branch can leave a junction with one ridge less. `keep` edges never go.
 Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
-                                const std::vector<char>& keep, const Params& p) {
+                                const std::vector<char>& keep, const std::vector<char>& fold, const Params& p) {
   Suppressed s;
   if (p.min_line_length <= 0) return s;
   const int nv = int(mesh.vert.size());
@@ -348,7 +354,7 @@ Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std
     }
     const VertexRidges after = vertex_ridges(nv, edges, edge_is_ridge);
     dropped += drop_short_cycles(mesh, edges, after, edge_is_ridge, keep, p.min_line_length, s);
-    if (dropped == 0) dropped = drop_sliver_patches(mesh, edges, edge_is_ridge, keep, p.min_line_length, s);
+    if (dropped == 0) dropped = drop_sliver_patches(mesh, edges, edge_is_ridge, keep, fold, p.min_line_length, s);
     if (dropped == 0) return s;
   }
 }
@@ -366,19 +372,22 @@ Result detect(const TriMesh& mesh, const Params& params) {
   Result result;
   std::vector<char> edge_is_ridge(edges.edge_count(), 0);
   std::vector<char> keep(edges.edge_count(), 0);  // ridges the noise suppression never drops
+  std::vector<char> fold;                          // with keep_sharp_slivers: ridges that are folds
+  if (params.keep_sharp_slivers) fold.assign(edges.edge_count(), 0);
   for (int e = 0; e < edges.edge_count(); ++e) {
     int val = edges.valence(e);
     if (val == 1) ++result.boundary_edges;
     if (val > 2) ++result.non_manifold_edges;
     edge_is_ridge[e] = is_shape_ridge(mesh, edges, normals, e, cos_ridge);
     keep[e] = val != 2;
+    if (!fold.empty()) fold[e] = is_shape_ridge(mesh, edges, normals, e, kCosFold);
   }
   if (params.use_selected_edges_as_ridges)
     for (int f = 0; f < nf; ++f)
       for (int z = 0; z < 3; ++z)
         if (mesh.face[f].IsFaceEdgeS(z)) edge_is_ridge[edges.edge_of(f, z)] = keep[edges.edge_of(f, z)] = 1;
 
-  const Suppressed suppressed = suppress_short_lines(mesh, edges, edge_is_ridge, keep, params);
+  const Suppressed suppressed = suppress_short_lines(mesh, edges, edge_is_ridge, keep, fold, params);
   result.suppressed_lines = suppressed.lines;
   result.suppressed_ridge_edges = suppressed.edges;
 

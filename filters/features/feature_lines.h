@@ -23,6 +23,11 @@ struct Params {
   /// ridge loops shorter than this, ridges an element of this size cannot represent. Boundary,
   /// non-manifold and selected edges are never dropped.
   double min_line_length = 0;
+  /// The suppression keeps the sliver patches bordered by a ridge sharper than 60 degrees
+  /// (faces' normals further apart): merged across such a fold, a patch is one the advancing
+  /// front cannot mesh (box.STL united). Off by default: a scan's noise has such slivers too,
+  /// and dropping them gives better elements there.
+  bool keep_sharp_slivers = false;
 };
 
 /// One chain of ridge edges between two corners, or a closed loop without corners.

@@ -50,6 +50,11 @@ private:
   Local& local(int v);
   void add_side(int a, int b, const Point3& back_normal = Point3(0, 0, 0));
   void remove_side(int s);
+  /// Takes out pairs of opposite sides (a->b and b->a): the front is the boundary of the part
+  /// still to mesh, and such a pair bounds no area. They are what is left of a dangling line
+  /// whose faces on both sides closed over it through a point a hair beside it (box.STL united:
+  /// an intersection line ending 0.002 from a plate's corner).
+  void drop_slits();
   bool try_side(int s);
   bool valid_triangle(int a, int b, const Point3& q, int q_id, const Point3& q_normal, const TangentFrame& side_frame, double h,
                       double min_angle_rad, const std::vector<int>& near_points) const;
@@ -118,6 +123,20 @@ void PatchMesher::remove_side(int s) {
     Local& l = local(v);
     l.degree--;
     l.sides.erase(std::remove(l.sides.begin(), l.sides.end(), s), l.sides.end());
+  }
+}
+
+void PatchMesher::drop_slits() {
+  std::vector<int> slits;
+  for (const auto& [key, id] : front_) {
+    const Side& side = sides_[id];
+    if (side.a < side.b && front_.count(directed(side.b, side.a))) slits.push_back(id);
+  }
+  std::sort(slits.begin(), slits.end());  // (front_ is a hash map)
+  for (int id : slits) {
+    const int reverse = front_.at(directed(sides_[id].b, sides_[id].a));
+    remove_side(id);
+    remove_side(reverse);
   }
 }
 
@@ -559,6 +578,7 @@ FrontResult PatchMesher::run(std::vector<FrontSide> front) {
   if (params_.thin_patch) {
     // No front layer fits: one layer of faces straight between the boundary lines.
     close_loops(std::numeric_limits<size_t>::max());
+    drop_slits();
     result_.unmeshed_sides = int(front_.size());
     return result_;
   }
@@ -583,6 +603,7 @@ FrontResult PatchMesher::run(std::vector<FrontSide> front) {
     }
   }
   if (!front_.empty()) close_loops(kMaxLastResortLoop);
+  drop_slits();
   result_.unmeshed_sides = int(front_.size());
   for (const auto& [key, id] : front_) result_.open_sides.push_back({sides_[id].a, sides_[id].b});
   std::sort(result_.open_sides.begin(), result_.open_sides.end());  // front_ is a hash map

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <set>
+#include <unordered_set>
 
 namespace mr::remesh {
 
@@ -62,6 +64,15 @@ Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, con
   for (const auto& p : in.points) haus = std::max(haus, distance_to(out_locator, p, -1, size.max_size(), reach));
   m.hausdorff = haus;
   return m;
+}
+
+int count_missing_edges(const OutputMesh& out, const std::vector<std::array<int, 2>>& edges) {
+  std::unordered_set<std::uint64_t> present;
+  for (const auto& t : out.faces)
+    for (int z = 0; z < 3; ++z) present.insert(OutputMesh::edge_key(t[z], t[(z + 1) % 3]));
+  int missing = 0;
+  for (const auto& e : edges) missing += present.count(OutputMesh::edge_key(e[0], e[1])) == 0;
+  return missing;
 }
 
 }  // namespace mr::remesh

@@ -19,4 +19,7 @@ struct Measures {
 /// estimate between `out` and the input surface of `input_locator`.
 Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, const SizeField& size);
 
+/// How many of `edges` (feature line segments) are no edge of any face of `out`.
+int count_missing_edges(const OutputMesh& out, const std::vector<std::array<int, 2>>& edges);
+
 }  // namespace mr::remesh

@@ -49,6 +49,12 @@ struct Result {
   int thin_patches = 0;         ///< strips narrower than the elements, given one layer of faces
   int unmeshed_sides = 0;       ///< front sides that could not be closed (0 = complete)
   int unmeshed_patches = 0;     ///< patches with unmeshed sides
+  /// Feature line segments that are no edge of the output: no hole, the faces closed over
+  /// them (the end of a dangling line a hair beside another line or corner).
+  int missing_feature_edges = 0;
+  /// The first regridding left sides open, and a second one that kept the sliver patches
+  /// bordered by folds (stage 1's keep_sharp_slivers) left fewer: this is the second.
+  bool kept_sharp_slivers = false;
   int retried_patches = 0;      ///< patch meshings repeated with smaller elements
   int local_repairs = 0;        ///< holes around open sides or pinched points meshed again, smaller
   int swaps = 0, smoothed = 0;  ///< post-pass moves

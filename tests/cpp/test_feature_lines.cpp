@@ -243,6 +243,26 @@ TEST(FeatureLines, SliverPatchesAreDroppedOnlyWhenTheyAreSmallAndThin) {
   EXPECT_EQ(kept.patch_count, 3);
 }
 
+TEST(FeatureLines, SliverPatchesBorderedByAFoldStayWithKeepSharpSlivers) {
+  // The sliver of the test above stood up (corner 2 raised to z = 3): along A-B it meets the
+  // face below at a fold (normals about 84 degrees apart), as the needles box.STL's union leaves
+  // at the plates' corners do.
+  TriMesh m;
+  test::build(m, {{0, 0, 0}, {20, 0, 0}, {10, 0.3, 3}, {10, 20, 0}, {10, -20, 0}},
+              {{0, 4, 1}, {0, 1, 2}, {0, 2, 3}, {2, 1, 3}});
+  const Point3 below = vcg::NormalizedTriangleNormal(m.face[0]), sliver = vcg::NormalizedTriangleNormal(m.face[1]);
+  ASSERT_LT(below * sliver, 0.5);  // a fold: over 60 degrees
+  features::Params p;
+  p.min_line_length = 20.0;  // area 30.1 < 0.1 x 20^2 and < 0.02 x 40.9^2: small and thin
+  const auto dropped = detect(m, p);
+  EXPECT_GT(dropped.suppressed_ridge_edges, 0);
+  EXPECT_EQ(dropped.patch_of_face[1], dropped.patch_of_face[0]);  // merged across the fold
+  p.keep_sharp_slivers = true;
+  const auto kept = detect(m, p);
+  EXPECT_EQ(kept.suppressed_ridge_edges, 0);
+  for (int f : {0, 2, 3}) EXPECT_NE(kept.patch_of_face[1], kept.patch_of_face[f]) << f;
+}
+
 TEST(FeatureLines, NetworksWithoutDanglingEndsAreNeverDropped) {
   TriMesh m;
   test::cube(m, 2);  // every corner is on three ridges

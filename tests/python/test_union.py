@@ -401,6 +401,33 @@ def test_pipeline_union_then_regrid_reaches_30_degrees_on_sphere_and_cylinder(ta
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
+def test_box_union_regridded_with_the_filters_defaults_is_closed():
+    # box.STL's plates nearly line up: the union leaves needles 0.14 long at the plates'
+    # corners, each a sliver patch bordered by a fold. The noise suppression (min_line_length,
+    # 2 x target by default) merged them into their neighbours across the fold, which the
+    # front cannot cross: 19 patches stayed open (43 boundary edges). The remesher now meshes
+    # a second time keeping them. Geometry bounds the angles here (plate corners 0.002 apart).
+    ms = load("multicomponent/box.STL")
+    unite(ms, bodies=COMPONENTS)
+    r = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PercentageValue(1.0),
+                                          use_selected_edges_as_ridges=True)
+    assert r["unmeshed_sides"] == 0 and r["unmeshed_patches"] == 0
+    assert r["kept_sharp_slivers"]
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
+
+def test_box_union_regridded_by_the_pipeline_is_closed_at_2_percent():
+    # At 2% the pipeline (min_line_length = target) left 2 patches open, 9 boundary edges.
+    from meshregrid import pipeline_union
+    ms = load("multicomponent/box.STL")
+    r = pipeline_union.union(ms, bodies="components", remesh=True, target_percent=2.0)
+    regrid = r["remesh"]
+    assert regrid["unmeshed_sides"] == 0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
+
 def test_cli_union_writes_union_and_lines(tmp_path):
     import json
     import subprocess
