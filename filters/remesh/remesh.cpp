@@ -369,7 +369,12 @@ Result remesh_near_origin(const TriMesh& given, const Params& params, TriMesh& o
   Result first = remesh_once(given, params, false, output);
   if (first.unmeshed_sides == 0 || first.suppressed_lines == 0) return first;
   TriMesh again;
-  Result second = remesh_once(given, params, true, again);
+  Params second_params = params;  // its progress said as such (the bar starts again)
+  if (params.progress)
+    second_params.progress = [&params](int percent, const char* what) {
+      params.progress(percent, (std::string("Meshing again, keeping folded sliver patches: ") + what).c_str());
+    };
+  Result second = remesh_once(given, second_params, true, again);
   if (second.unmeshed_sides >= first.unmeshed_sides) return first;
   vcg::tri::Append<TriMesh, TriMesh>::MeshCopyConst(output, again);  // flags (features) too
   second.kept_sharp_slivers = true;
