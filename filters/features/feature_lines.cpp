@@ -239,6 +239,7 @@ double edge_length(const TriMesh& mesh, const EdgeTable& edges, int e) {
 
 struct Suppressed {
   int lines = 0, edges = 0;
+  int folded_slivers = 0;  // sliver patches bordered by a fold among the lines
 };
 
 // Components of the ridge graph that are simple cycles (every vertex on two ridges, corners
@@ -280,30 +281,32 @@ int drop_short_cycles(const TriMesh& mesh, const EdgeTable& edges, const VertexR
 // strip ten times longer than wide), e.g. one sliver input face whose three edges are ridges, as a
 // scan's crease network makes. An element of this size cannot represent them, and keeping them
 // forces their slivers into the output as they stand. Their border ridges go, so they join their
-// neighbours. Small patches of good shape (a small cube's sides) stay, and with `fold` (per
-// edge, or empty) those bordered by a fold.
+// neighbours. Small patches of good shape (a small cube's sides) stay, and with `keep_folded`
+// those bordered by a fold (`fold`, per edge).
 constexpr double kSliverArea = 0.1, kSliverShape = 0.02;
 
 int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
-                       const std::vector<char>& keep, const std::vector<char>& fold, double min_length,
-                       Suppressed& s) {
+                       const std::vector<char>& keep, const std::vector<char>& fold, bool keep_folded,
+                       double min_length, Suppressed& s) {
   const Flood flood = flood_patches(mesh, edges, edge_is_ridge);
   std::vector<double> border(flood.count, 0.0), area(flood.count, 0.0);
   for (size_t f = 0; f < mesh.face.size(); ++f) area[flood.patch_of_face[f]] += 0.5 * vcg::DoubleArea(mesh.face[f]);
   std::vector<char> fixed(flood.count, 0);  // touches an edge that never goes
+  std::vector<char> folded(flood.count, 0);  // touches a fold
   for (int e = 0; e < edges.edge_count(); ++e) {
     if (!edge_is_ridge[e]) continue;
     const double length = edge_length(mesh, edges, e);
     for (int k = 0; k < edges.valence(e); ++k) {
       const int patch = flood.patch_of_face[edges.side(e, k).face];
       border[patch] += length;
-      if (keep[e] || (!fold.empty() && fold[e])) fixed[patch] = 1;
+      if (keep[e]) fixed[patch] = 1;
+      if (fold[e]) folded[patch] = 1;
     }
   }
   std::vector<char> island(flood.count, 0);
   for (int p = 0; p < flood.count; ++p)
-    island[p] = !fixed[p] && border[p] > 0 && area[p] < kSliverArea * min_length * min_length &&
-                area[p] < kSliverShape * border[p] * border[p];
+    island[p] = !fixed[p] && !(keep_folded && folded[p]) && border[p] > 0 &&
+                area[p] < kSliverArea * min_length * min_length && area[p] < kSliverShape * border[p] * border[p];
   int dropped = 0;
   std::vector<char> counted(flood.count, 0);
   for (int e = 0; e < edges.edge_count(); ++e) {
@@ -313,7 +316,12 @@ int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector
       const int patch = flood.patch_of_face[edges.side(e, k).face];
       if (!island[patch]) continue;
       on_island = true;
-      if (!counted[patch]) { counted[patch] = 1; s.lines++; dropped++; }
+      if (!counted[patch]) {
+        counted[patch] = 1;
+        s.lines++;
+        s.folded_slivers += folded[patch];
+        dropped++;
+      }
     }
     if (!on_island) continue;
     edge_is_ridge[e] = 0;
@@ -354,7 +362,7 @@ Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std
     }
     const VertexRidges after = vertex_ridges(nv, edges, edge_is_ridge);
     dropped += drop_short_cycles(mesh, edges, after, edge_is_ridge, keep, p.min_line_length, s);
-    if (dropped == 0) dropped = drop_sliver_patches(mesh, edges, edge_is_ridge, keep, fold, p.min_line_length, s);
+    if (dropped == 0) dropped = drop_sliver_patches(mesh, edges, edge_is_ridge, keep, fold, p.keep_sharp_slivers, p.min_line_length, s);
     if (dropped == 0) return s;
   }
 }
@@ -372,15 +380,14 @@ Result detect(const TriMesh& mesh, const Params& params) {
   Result result;
   std::vector<char> edge_is_ridge(edges.edge_count(), 0);
   std::vector<char> keep(edges.edge_count(), 0);  // ridges the noise suppression never drops
-  std::vector<char> fold;                          // with keep_sharp_slivers: ridges that are folds
-  if (params.keep_sharp_slivers) fold.assign(edges.edge_count(), 0);
+  std::vector<char> fold(edges.edge_count(), 0);  // ridges sharper than kCosFold
   for (int e = 0; e < edges.edge_count(); ++e) {
     int val = edges.valence(e);
     if (val == 1) ++result.boundary_edges;
     if (val > 2) ++result.non_manifold_edges;
     edge_is_ridge[e] = is_shape_ridge(mesh, edges, normals, e, cos_ridge);
     keep[e] = val != 2;
-    if (!fold.empty()) fold[e] = is_shape_ridge(mesh, edges, normals, e, kCosFold);
+    fold[e] = is_shape_ridge(mesh, edges, normals, e, kCosFold);
   }
   if (params.use_selected_edges_as_ridges)
     for (int f = 0; f < nf; ++f)
@@ -390,6 +397,7 @@ Result detect(const TriMesh& mesh, const Params& params) {
   const Suppressed suppressed = suppress_short_lines(mesh, edges, edge_is_ridge, keep, fold, params);
   result.suppressed_lines = suppressed.lines;
   result.suppressed_ridge_edges = suppressed.edges;
+  result.suppressed_folded_slivers = suppressed.folded_slivers;
 
   Flood flood = flood_patches(mesh, edges, edge_is_ridge);
   result.merged_patches = merge_small_patches(edges, edge_is_ridge, flood, params.min_patch_faces);

@@ -48,6 +48,7 @@ struct Result {
   int merged_patches = 0;     ///< patches removed by the minimum-size merge
   int suppressed_lines = 0;   ///< short dangling lines, loops and sliver patches dropped by min_line_length
   int suppressed_ridge_edges = 0;  ///< their ridge edges
+  int suppressed_folded_slivers = 0;  ///< of the sliver patches, those bordered by a fold (Params::keep_sharp_slivers)
 };
 
 /// Detects ridges, corners, discrete lines and patches.

@@ -285,6 +285,7 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_sharp_s
   result.lines = int(fr.lines.size());
   result.patches = fr.patch_count;
   result.suppressed_lines = fr.suppressed_lines;
+  result.suppressed_folded_slivers = fr.suppressed_folded_slivers;
 
   progress(params, 8, "Building the size field and the surface index");
   const Surface surface = Surface::from_mesh(input, fr.patch_of_face);
@@ -367,7 +368,7 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_sharp_s
 /// as a second try.)
 Result remesh_near_origin(const TriMesh& given, const Params& params, TriMesh& output) {
   Result first = remesh_once(given, params, false, output);
-  if (first.unmeshed_sides == 0 || first.suppressed_lines == 0) return first;
+  if (first.unmeshed_sides == 0 || first.suppressed_folded_slivers == 0) return first;
   TriMesh again;
   Params second_params = params;  // its progress said as such (the bar starts again)
   if (params.progress)

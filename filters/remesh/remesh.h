@@ -44,6 +44,7 @@ struct Params {
 struct Result {
   int corners = 0, lines = 0, patches = 0;
   int suppressed_lines = 0;     ///< short dangling lines and loops stage 1 dropped
+  int suppressed_folded_slivers = 0;  ///< of those, sliver patches bordered by a fold
   int feature_edges = 0;
   int merged_lines = 0;         ///< lines merged with a nearly coincident twin (sliver patch dropped)
   int thin_patches = 0;         ///< strips narrower than the elements, given one layer of faces

@@ -257,9 +257,11 @@ TEST(FeatureLines, SliverPatchesBorderedByAFoldStayWithKeepSharpSlivers) {
   const auto dropped = detect(m, p);
   EXPECT_GT(dropped.suppressed_ridge_edges, 0);
   EXPECT_EQ(dropped.patch_of_face[1], dropped.patch_of_face[0]);  // merged across the fold
+  EXPECT_EQ(dropped.suppressed_folded_slivers, 1);
   p.keep_sharp_slivers = true;
   const auto kept = detect(m, p);
   EXPECT_EQ(kept.suppressed_ridge_edges, 0);
+  EXPECT_EQ(kept.suppressed_folded_slivers, 0);
   for (int f : {0, 2, 3}) EXPECT_NE(kept.patch_of_face[1], kept.patch_of_face[f]) << f;
 }
 
