@@ -73,6 +73,10 @@ RichParameterList FilterFeatureLinesPlugin::initParameterList(const QAction*, co
                                "ridges, repeatedly; then corners, lines and patches are found again. Absolute, or a "
                                "percentage of the bounding-box diagonal; use the element size you mesh with. "
                                "Boundary, non-manifold and selected edges always stay. 0 keeps every ridge."));
+  list.addParam(RichBool("keep_folded_slivers", defaults.keep_sharp_slivers, "Keep folded sliver patches",
+                         "With the minimum line length: sliver patches bordered by a ridge sharper than 60 "
+                         "degrees (a fold) keep their borders. The advancing-front remesher meshes again with "
+                         "this on where merging them across the fold left its front open (CAD unions)."));
   list.addParam(RichBool("create_lines_layer", false, "Create a layer with the lines",
                          "Add a new layer holding the discrete lines as an edge mesh (polylines)."));
   list.addParam(RichBool("color_patches", true, "Colour faces by patch",
@@ -146,6 +150,7 @@ std::map<std::string, QVariant> FilterFeatureLinesPlugin::applyFilter(
   p.use_selected_edges_as_ridges = params.getBool("use_selected_edges_as_ridges");
   p.min_patch_faces = params.getInt("min_patch_faces");
   p.min_line_length = params.getAbsPerc("min_line_length");
+  p.keep_sharp_slivers = params.getBool("keep_folded_slivers");
 
   if (cb) cb(0, "Copying mesh");
   mr::bridge::CoreCopy copy;
@@ -171,6 +176,7 @@ std::map<std::string, QVariant> FilterFeatureLinesPlugin::applyFilter(
       {"merged_patches", QVariant(r.merged_patches)},
       {"suppressed_lines", QVariant(r.suppressed_lines)},
       {"suppressed_ridge_edges", QVariant(r.suppressed_ridge_edges)},
+      {"suppressed_folded_slivers", QVariant(r.suppressed_folded_slivers)},
       {"time_ms", QVariant(ms)},
   };
 }
