@@ -52,7 +52,7 @@ bool is_shape_ridge(const TriMesh& mesh, const EdgeTable& edges, const std::vect
   return na * nb < cos_ridge;
 }
 
-// Sharper than this (the cosine between the faces' normals) is a fold for keep_sharp_slivers:
+// Sharper than this (the cosine between the faces' normals) is a fold for keep_folded_slivers:
 // the advancing front's normal test (n . n > 0.5) refuses the surface across it.
 constexpr double kCosFold = 0.5;
 
@@ -362,7 +362,7 @@ Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std
     }
     const VertexRidges after = vertex_ridges(nv, edges, edge_is_ridge);
     dropped += drop_short_cycles(mesh, edges, after, edge_is_ridge, keep, p.min_line_length, s);
-    if (dropped == 0) dropped = drop_sliver_patches(mesh, edges, edge_is_ridge, keep, fold, p.keep_sharp_slivers, p.min_line_length, s);
+    if (dropped == 0) dropped = drop_sliver_patches(mesh, edges, edge_is_ridge, keep, fold, p.keep_folded_slivers, p.min_line_length, s);
     if (dropped == 0) return s;
   }
 }
@@ -380,14 +380,14 @@ Result detect(const TriMesh& mesh, const Params& params) {
   Result result;
   std::vector<char> edge_is_ridge(edges.edge_count(), 0);
   std::vector<char> keep(edges.edge_count(), 0);  // ridges the noise suppression never drops
-  std::vector<char> fold(edges.edge_count(), 0);  // ridges sharper than kCosFold
+  std::vector<char> fold(edges.edge_count(), 0);  // ridges sharper than kCosFold (read only for ridges)
   for (int e = 0; e < edges.edge_count(); ++e) {
     int val = edges.valence(e);
     if (val == 1) ++result.boundary_edges;
     if (val > 2) ++result.non_manifold_edges;
     edge_is_ridge[e] = is_shape_ridge(mesh, edges, normals, e, cos_ridge);
     keep[e] = val != 2;
-    fold[e] = is_shape_ridge(mesh, edges, normals, e, kCosFold);
+    fold[e] = edge_is_ridge[e] && is_shape_ridge(mesh, edges, normals, e, kCosFold);
   }
   if (params.use_selected_edges_as_ridges)
     for (int f = 0; f < nf; ++f)

@@ -27,7 +27,7 @@ struct Params {
   /// (faces' normals further apart): merged across such a fold, a patch is one the advancing
   /// front cannot mesh (box.STL united). Off by default: a scan's noise has such slivers too,
   /// and dropping them gives better elements there.
-  bool keep_sharp_slivers = false;
+  bool keep_folded_slivers = false;
 };
 
 /// One chain of ridge edges between two corners, or a closed loop without corners.
@@ -48,7 +48,7 @@ struct Result {
   int merged_patches = 0;     ///< patches removed by the minimum-size merge
   int suppressed_lines = 0;   ///< short dangling lines, loops and sliver patches dropped by min_line_length
   int suppressed_ridge_edges = 0;  ///< their ridge edges
-  int suppressed_folded_slivers = 0;  ///< of the sliver patches, those bordered by a fold (Params::keep_sharp_slivers)
+  int suppressed_folded_slivers = 0;  ///< of the sliver patches, those bordered by a fold (Params::keep_folded_slivers)
 };
 
 /// Detects ridges, corners, discrete lines and patches.

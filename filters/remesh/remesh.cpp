@@ -261,8 +261,8 @@ const TriMesh& coherently_oriented(const TriMesh& input, TriMesh& copy) {
 }
 
 /// The regridding itself, on an input that lies about as close to the origin as it is large;
-/// `keep_sharp_slivers` goes to stage 1's noise suppression.
-Result remesh_once(const TriMesh& given, const Params& params, bool keep_sharp_slivers, TriMesh& output) {
+/// `keep_folded_slivers` goes to stage 1's noise suppression.
+Result remesh_once(const TriMesh& given, const Params& params, bool keep_folded_slivers, TriMesh& output) {
   require_no_duplicate_faces(given);
   require_some_area(given);
   TriMesh oriented;
@@ -279,7 +279,7 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_sharp_s
   fp.corner_angle_deg = params.corner_angle_deg;
   fp.use_selected_edges_as_ridges = params.use_selected_edges_as_ridges;
   fp.min_line_length = params.min_line_length < 0 ? params.target_length : params.min_line_length;
-  fp.keep_sharp_slivers = keep_sharp_slivers;
+  fp.keep_folded_slivers = keep_folded_slivers;
   const features::Result fr = features::detect(input, fp);
   result.corners = int(fr.corners.size());
   result.lines = int(fr.lines.size());
@@ -378,7 +378,7 @@ Result remesh_near_origin(const TriMesh& given, const Params& params, TriMesh& o
   Result second = remesh_once(given, second_params, true, again);
   if (second.unmeshed_sides >= first.unmeshed_sides) return first;
   vcg::tri::Append<TriMesh, TriMesh>::MeshCopyConst(output, again);  // flags (features) too
-  second.kept_sharp_slivers = true;
+  second.kept_folded_slivers = true;
   return second;
 }
 

@@ -54,8 +54,8 @@ struct Result {
   /// them (the end of a dangling line a hair beside another line or corner).
   int missing_feature_edges = 0;
   /// The first regridding left sides open, and a second one that kept the sliver patches
-  /// bordered by folds (stage 1's keep_sharp_slivers) left fewer: this is the second.
-  bool kept_sharp_slivers = false;
+  /// bordered by folds (stage 1's keep_folded_slivers) left fewer: this is the second.
+  bool kept_folded_slivers = false;
   int retried_patches = 0;      ///< patch meshings repeated with smaller elements
   int local_repairs = 0;        ///< holes around open sides or pinched points meshed again, smaller
   int swaps = 0, smoothed = 0;  ///< post-pass moves

@@ -73,7 +73,7 @@ RichParameterList FilterFeatureLinesPlugin::initParameterList(const QAction*, co
                                "ridges, repeatedly; then corners, lines and patches are found again. Absolute, or a "
                                "percentage of the bounding-box diagonal; use the element size you mesh with. "
                                "Boundary, non-manifold and selected edges always stay. 0 keeps every ridge."));
-  list.addParam(RichBool("keep_folded_slivers", defaults.keep_sharp_slivers, "Keep folded sliver patches",
+  list.addParam(RichBool("keep_folded_slivers", defaults.keep_folded_slivers, "Keep folded sliver patches",
                          "With the minimum line length: sliver patches bordered by a ridge sharper than 60 "
                          "degrees (a fold) keep their borders. The advancing-front remesher meshes again with "
                          "this on where merging them across the fold left its front open (CAD unions)."));
@@ -150,7 +150,7 @@ std::map<std::string, QVariant> FilterFeatureLinesPlugin::applyFilter(
   p.use_selected_edges_as_ridges = params.getBool("use_selected_edges_as_ridges");
   p.min_patch_faces = params.getInt("min_patch_faces");
   p.min_line_length = params.getAbsPerc("min_line_length");
-  p.keep_sharp_slivers = params.getBool("keep_folded_slivers");
+  p.keep_folded_slivers = params.getBool("keep_folded_slivers");
 
   if (cb) cb(0, "Copying mesh");
   mr::bridge::CoreCopy copy;

@@ -150,7 +150,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
   const double ms = double(timer.nsecsElapsed()) * 1e-6;
   log("Advancing front: %d vertices, %d faces, min angle %.2f deg, %d unmeshed front sides (%.1f ms)",
       int(output.vert.size()), int(output.face.size()), r.min_angle_deg, r.unmeshed_sides, ms);
-  if (r.kept_sharp_slivers)
+  if (r.kept_folded_slivers)
     log("Meshed a second time keeping the sliver patches bordered by folds: the first left front sides open");
   if (r.missing_feature_edges > 0)
     log("%d feature line segments are no output edge: the faces closed over a line's end that lies a hair "
@@ -172,7 +172,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"unmeshed_sides", QVariant(r.unmeshed_sides)},
       {"unmeshed_patches", QVariant(r.unmeshed_patches)},
       {"missing_feature_edges", QVariant(r.missing_feature_edges)},
-      {"kept_sharp_slivers", QVariant(r.kept_sharp_slivers)},
+      {"kept_folded_slivers", QVariant(r.kept_folded_slivers)},
       {"retried_patches", QVariant(r.retried_patches)},
       {"local_repairs", QVariant(r.local_repairs)},
       {"merged_lines", QVariant(r.merged_lines)},

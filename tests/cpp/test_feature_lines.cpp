@@ -243,7 +243,7 @@ TEST(FeatureLines, SliverPatchesAreDroppedOnlyWhenTheyAreSmallAndThin) {
   EXPECT_EQ(kept.patch_count, 3);
 }
 
-TEST(FeatureLines, SliverPatchesBorderedByAFoldStayWithKeepSharpSlivers) {
+TEST(FeatureLines, SliverPatchesBorderedByAFoldStayWithKeepFoldedSlivers) {
   // The sliver of the test above stood up (corner 2 raised to z = 3): along A-B it meets the
   // face below at a fold (normals about 84 degrees apart), as the needles box.STL's union leaves
   // at the plates' corners do.
@@ -258,7 +258,7 @@ TEST(FeatureLines, SliverPatchesBorderedByAFoldStayWithKeepSharpSlivers) {
   EXPECT_GT(dropped.suppressed_ridge_edges, 0);
   EXPECT_EQ(dropped.patch_of_face[1], dropped.patch_of_face[0]);  // merged across the fold
   EXPECT_EQ(dropped.suppressed_folded_slivers, 1);
-  p.keep_sharp_slivers = true;
+  p.keep_folded_slivers = true;
   const auto kept = detect(m, p);
   EXPECT_EQ(kept.suppressed_ridge_edges, 0);
   EXPECT_EQ(kept.suppressed_folded_slivers, 0);
