@@ -412,7 +412,7 @@ def test_box_union_regridded_with_the_filters_defaults_is_closed():
     r = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PercentageValue(1.0),
                                           use_selected_edges_as_ridges=True)
     assert r["unmeshed_sides"] == 0 and r["unmeshed_patches"] == 0
-    assert r["kept_sharp_slivers"]
+    assert r["kept_folded_slivers"]
     topo = ms.get_topological_measures()
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
@@ -793,12 +793,27 @@ def test_bug_crossings_rounded_to_one_place_left_faces_with_coincident_corners(s
         assert ms.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=EXACT_VOLUME_RTOL)
 
 
-def _nearly_coincident_blobs(seed):
-    """fuzz_union.py --nonconvex's case for `seed` (kind 2 for these seeds: a noisy blob and
-    copies of it scaled about one of its vertices or shifted on a grid)."""
+def _fuzz_union():
+    """scripts/fuzz_union.py, whose cases the regressions below replay."""
     import sys
     sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts"))
     import fuzz_union
+    return fuzz_union
+
+
+def _near_reference(far_parts, transform):
+    """manifold3d's union volume of far_parts moved back near the origin (exact there, as in the fuzzer)."""
+    fuzz_union = _fuzz_union()
+    near = pymeshlab.MeshSet()
+    for v, f in far_parts:
+        near.add_mesh(pymeshlab.Mesh(fuzz_union.moved_back(v, transform), f))
+    return reference([near.mesh(i) for i in range(near.mesh_number())])
+
+
+def _nearly_coincident_blobs(seed):
+    """fuzz_union.py --nonconvex's case for `seed` (kind 2 for these seeds: a noisy blob and
+    copies of it scaled about one of its vertices or shifted on a grid)."""
+    fuzz_union = _fuzz_union()
     _, sphere, _ = fuzz_union.shapes()
     kind, parts = fuzz_union.nonconvex_case(seed, sphere, None)
     assert kind == 2
@@ -877,9 +892,7 @@ def test_bug_a_bubble_that_rounding_closed_between_nearly_coincident_blobs_goes(
     # merge of the two crossings was refused (its star would not be a manifold), which left
     # two faces with two corners at one place, also after the sliver step. The bubble's two
     # faces now go with the merge, where their corners keep closed stars.
-    import sys
-    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts"))
-    import fuzz_union
+    fuzz_union = _fuzz_union()
     seed = 117185
     transform = fuzz_union.far_transform(seed, True)
     far = fuzz_union.moved(_nearly_coincident_blobs(seed), transform)
@@ -897,11 +910,7 @@ def test_bug_a_bubble_that_rounding_closed_between_nearly_coincident_blobs_goes(
     # blobs moved back the same way.
     near = pymeshlab.MeshSet()
     near.add_mesh(pymeshlab.Mesh(fuzz_union.moved_back(v, transform), f))
-    parts = pymeshlab.MeshSet()
-    for part_v, part_f in far:
-        parts.add_mesh(pymeshlab.Mesh(fuzz_union.moved_back(part_v, transform), part_f))
-    ref = reference([parts.mesh(i) for i in range(parts.mesh_number())])
-    _assert_rounding_left_no_fault(near, ref, sliver_angle)
+    _assert_rounding_left_no_fault(near, _near_reference(far, transform), sliver_angle)
 
 
 def test_bug_a_compensating_move_sees_the_faces_a_flip_just_made():
@@ -911,9 +920,7 @@ def test_bug_a_compensating_move_sees_the_faces_a_flip_just_made():
     # the step left 3 faces crossing another: a flip gave its volume back by moving a ring
     # vertex, whose crossing check looked the flipped faces up in the grid at their old boxes
     # and missed one. The flipped faces are now filed before the compensating move.
-    import sys
-    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts"))
-    import fuzz_union
+    fuzz_union = _fuzz_union()
     seed = 4528
     _, parts = fuzz_union.models_case(seed, fuzz_union.load_models())
     transform = fuzz_union.far_transform(seed, True)
@@ -927,10 +934,7 @@ def test_bug_a_compensating_move_sees_the_faces_a_flip_just_made():
     m = ms.current_mesh()
     near = pymeshlab.MeshSet()  # measured near the origin, where moving back is exact
     near.add_mesh(pymeshlab.Mesh(fuzz_union.moved_back(m.vertex_matrix(), transform), m.face_matrix()))
-    near_parts = pymeshlab.MeshSet()
-    for part_v, part_f in far:
-        near_parts.add_mesh(pymeshlab.Mesh(fuzz_union.moved_back(part_v, transform), part_f))
-    ref = reference([near_parts.mesh(i) for i in range(near_parts.mesh_number())])
+    ref = _near_reference(far, transform)
     _assert_rounding_left_no_fault(near, ref, params["sliver_angle"])
     assert near.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=budget)
 
