@@ -7,6 +7,7 @@
 #include "features/feature_lines.h"
 #include "remesh/advancing_front.h"
 #include "remesh/feature_front.h"
+#include "remesh/flat_pockets.h"
 #include "remesh/local_repair.h"
 #include "remesh/mesh_improvement.h"
 #include "remesh/mesh_measures.h"
@@ -319,6 +320,8 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_folded_
     result.unmeshed_sides += r.unmeshed_sides;
     if (r.unmeshed_sides > 0 || r.iteration_limit) result.unmeshed_patches++;
   }
+
+  result.flat_pockets_removed = remove_flat_pockets(out);
 
   progress(params, 80, "Improving: swaps and smoothing");
   const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, size, params.improvement_iterations, ff.line_paths);

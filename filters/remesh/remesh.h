@@ -53,6 +53,7 @@ struct Result {
   /// Feature line segments that are no edge of the output: no hole, the faces closed over
   /// them (the end of a dangling line a hair beside another line or corner).
   int missing_feature_edges = 0;
+  int flat_pockets_removed = 0;  ///< face pairs on the same three points, facing apart (flat_pockets.h)
   /// The first regridding left sides open, and a second one that kept the sliver patches
   /// bordered by folds (stage 1's keep_folded_slivers) left fewer: this is the second.
   bool kept_folded_slivers = false;

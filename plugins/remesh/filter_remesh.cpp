@@ -152,6 +152,10 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       int(output.vert.size()), int(output.face.size()), r.min_angle_deg, r.unmeshed_sides, ms);
   if (r.kept_folded_slivers)
     log("Meshed a second time keeping the sliver patches bordered by folds: the first left front sides open");
+  if (r.flat_pockets_removed > 0)
+    log("%d pairs of faces on the same three points, facing apart, removed: a patch folded onto itself "
+        "closed the same triangle from both sides",
+        r.flat_pockets_removed);
   if (r.missing_feature_edges > 0)
     log("%d feature line segments are no output edge: the faces closed over a line's end that lies a hair "
         "beside another line",
@@ -172,6 +176,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"unmeshed_sides", QVariant(r.unmeshed_sides)},
       {"unmeshed_patches", QVariant(r.unmeshed_patches)},
       {"missing_feature_edges", QVariant(r.missing_feature_edges)},
+      {"flat_pockets_removed", QVariant(r.flat_pockets_removed)},
       {"kept_folded_slivers", QVariant(r.kept_folded_slivers)},
       {"retried_patches", QVariant(r.retried_patches)},
       {"local_repairs", QVariant(r.local_repairs)},

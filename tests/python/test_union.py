@@ -428,6 +428,27 @@ def test_box_union_regridded_by_the_pipeline_is_closed_at_2_percent():
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
+def test_box_union_of_its_plates_as_layers_regridded_at_1_percent_is_two_manifold():
+    # The plates as layers (merged vertices, one layer each) give a patch that folds back over
+    # itself; its front closed one triangle from both sides. The two faces, facing apart,
+    # pinched two corners and a line point (2 non-manifold vertices). The remesher now
+    # removes such pairs.
+    from meshregrid import pipeline_union
+    src = load("multicomponent/box.STL")
+    src.meshing_remove_duplicate_vertices()
+    src.generate_splitting_by_connected_components()
+    ms = pymeshlab.MeshSet()
+    for i in range(1, src.mesh_number()):
+        ms.add_mesh(pymeshlab.Mesh(src.mesh(i).vertex_matrix(), src.mesh(i).face_matrix()))
+    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
+    regrid = r["remesh"]
+    assert regrid["unmeshed_sides"] == 0
+    assert regrid["flat_pockets_removed"] >= 1
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    assert topo["non_two_manifold_vertices"] == 0
+
+
 def test_cli_union_writes_union_and_lines(tmp_path):
     import json
     import subprocess
