@@ -386,6 +386,54 @@ def test_pipeline_union_then_regrid_keeps_the_line_and_reaches_30_degrees():
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
+def _benchmark_cluster(n):
+    """scripts/bench_union.py's cluster: n icospheres (1280 faces) of radius 0.5, seed 1."""
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(radius=0.5, subdiv=3)
+    v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
+    ms.delete_current_mesh()
+    for c in np.random.default_rng(1).random((n, 3)) * (n ** (1 / 3)) * 0.9:
+        ms.add_mesh(pymeshlab.Mesh(v + c, f))
+    return ms
+
+
+def test_pipeline_regrids_the_exact_union_where_the_sliver_steps_folds_make_ridges():
+    # The sliver step folds small faces beside the cluster's lines (10 edges over 30 degrees,
+    # none in the exact arrangement); the regrid took them for ridges: 18 corners and 28 lines,
+    # smallest angle 11.8 degrees. Regridded from the exact union: 4 corners, 10 lines, 31.3.
+    from meshregrid import pipeline_union
+    ms = _benchmark_cluster(10)
+    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
+    regrid = r["remesh"]
+    assert regrid["from_exact_union"]
+    assert regrid["unmeshed_sides"] == 0 and regrid["min_angle"] >= 30.0
+    assert ms.current_mesh_id() == r["remesh_layer"]
+    assert angles(ms.current_mesh()).min() >= 30.0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    # The layers: the ten bodies, the union with the sliver step, the regrid (the exact
+    # union made for it is gone), all visible.
+    layers = [i for i in range(r["remesh_layer"] + 1) if ms.mesh_id_exists(i)]
+    assert len(layers) == 12 and layers[10:] == [r["union_layer"], r["remesh_layer"]]
+    assert all(ms.is_mesh_visible(i) for i in layers)
+    # Without the second regrid, the one from the stepped union stays.
+    ms = _benchmark_cluster(10)
+    only = pipeline_union.union(ms, remesh=True, target_percent=1.0, regrid_exact_union_too=False)["remesh"]
+    assert not only["from_exact_union"] and only["min_angle"] < 20.0
+
+
+def test_pipeline_keeps_the_stepped_regrid_where_the_exact_unions_needles_do_worse():
+    # box.STL: the exact arrangement's needles regrid to a face of 0.0 degrees; the stepped
+    # union's regrid (0.97, bounded by plate corners 0.002 apart) stays.
+    from meshregrid import pipeline_union
+    ms = load("multicomponent/box.STL")
+    r = pipeline_union.union(ms, bodies="components", remesh=True, target_percent=2.0)
+    assert not r["remesh"]["from_exact_union"]
+    assert r["remesh"]["min_angle"] > 0.5
+    layers = [i for i in range(r["remesh_layer"] + 1) if ms.mesh_id_exists(i)]
+    assert layers == [0, r["union_layer"], r["remesh_layer"]]
+
+
 @pytest.mark.parametrize("target_percent", [1.0, 2.0])
 def test_pipeline_union_then_regrid_reaches_30_degrees_on_sphere_and_cylinder(target_percent):
     # The issue's quality case (its peers leave 2-27% of faces under 5 degrees there): the
@@ -463,6 +511,32 @@ def test_cli_union_writes_union_and_lines(tmp_path):
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(str(out))
     assert ms.current_mesh().face_number() == result["faces"]
+    records = lines.read_text().split("\n")
+    assert sum(r.startswith("l ") for r in records) == result["intersection_edges"]
+
+
+def test_cli_union_remesh_writes_the_regrid_that_stayed(tmp_path):
+    # The regrid's layer is no longer the last one made (a second regrid from the exact union
+    # may be made and one of them deleted): the CLI writes the one the pipeline kept.
+    import json
+    import subprocess
+    import sys
+    out, lines = tmp_path / "r.ply", tmp_path / "l.obj"
+    parts = []
+    for k, c in enumerate(np.random.default_rng(1).random((10, 3)) * (10 ** (1 / 3)) * 0.9):
+        ms = pymeshlab.MeshSet()
+        ms.create_sphere(radius=0.5, subdiv=3)
+        ms.compute_matrix_from_translation(axisx=c[0], axisy=c[1], axisz=c[2])
+        parts.append(tmp_path / f"s{k}.ply")
+        ms.save_current_mesh(str(parts[-1]))
+    proc = subprocess.run([sys.executable, "-m", "meshregrid", "union", *map(str, parts), str(out), "--lines",
+                           str(lines), "--remesh"], capture_output=True, text=True, check=True)
+    result = json.loads(proc.stdout)
+    assert result["remesh"]["from_exact_union"] and result["remesh"]["min_angle"] >= 30.0
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(str(out))
+    assert ms.current_mesh().face_number() == result["remesh"]["faces"]
+    assert angles(ms.current_mesh()).min() >= 30.0 - 1e-4  # (PLY stores floats)
     records = lines.read_text().split("\n")
     assert sum(r.startswith("l ") for r in records) == result["intersection_edges"]
 

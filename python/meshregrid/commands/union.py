@@ -59,7 +59,7 @@ def run(args) -> int:
     union_id = result["union_layer"]
     if args.lines:
         write_polylines(ms.mesh(union_id + 1), args.lines)
-    ms.set_current_mesh(ms.mesh_number() - 1 if args.remesh else union_id)
+    ms.set_current_mesh(result["remesh_layer"] if args.remesh else union_id)
     ms.save_current_mesh(args.output)
     print(json.dumps(result, indent=2, sort_keys=True))
     if args.remesh and result["remesh"].get("unmeshed_sides", 0) != 0:
