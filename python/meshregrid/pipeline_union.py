@@ -104,13 +104,20 @@ def _regrid_exact_union(ms, bodies, extra, before, input_layer, regrid, result, 
     for i in made:  # the first union's layers are no bodies of the second
         ms.set_mesh_visibility(i, False)
     ms.set_current_mesh(input_layer)
-    ms.generate_surface_intersection_union(bodies=BODIES[bodies], sliver_angle=0.0, create_lines_layer=False, **extra)
-    exact_id = ms.current_mesh_id()
-    second, second_id = regrid(exact_id)
-    better = _score(ms, second_id, second) > first
+    try:
+        ms.generate_surface_intersection_union(bodies=BODIES[bodies], sliver_angle=0.0, create_lines_layer=False,
+                                               **extra)
+        exact_id = ms.current_mesh_id()
+        second, second_id = regrid(exact_id)
+        better = _score(ms, second_id, second) > first
+    except pymeshlab.PyMeshLabException:
+        better = False  # (the first regrid stands; what the try made goes below)
     for i, visible in shown.items():
         ms.set_mesh_visibility(i, visible)
-    for layer in ([exact_id, regrid_id] if better else [exact_id, second_id]):
+    # The layers the second try made go, but its regrid if that stays; then the first regrid.
+    tried = [i for i in _layer_ids(ms) if i not in before and i not in made]
+    gone = [i for i in tried if not (better and i == second_id)] + ([regrid_id] if better else [])
+    for layer in gone:
         ms.set_current_mesh(layer)
         ms.delete_current_mesh()
     if not better:

@@ -422,6 +422,28 @@ def test_pipeline_regrids_the_exact_union_where_the_sliver_steps_folds_make_ridg
     assert not only["from_exact_union"] and only["min_angle"] < 20.0
 
 
+def test_pipeline_keeps_the_first_regrid_when_the_second_try_fails(monkeypatch):
+    # A refusal in the second try (here forced) must not lose the first regrid: it stays, and
+    # the layers the try made go.
+    from meshregrid import pipeline_union
+    united = pymeshlab.MeshSet.generate_surface_intersection_union
+
+    def exact_union_refused(ms, *args, **kwargs):
+        if kwargs.get("sliver_angle") == 0.0:
+            united(ms, *args, **kwargs)  # a layer is made, then the refusal
+            raise pymeshlab.PyMeshLabException("refused for the test")
+        return united(ms, *args, **kwargs)
+
+    monkeypatch.setattr(pymeshlab.MeshSet, "generate_surface_intersection_union", exact_union_refused)
+    ms = _benchmark_cluster(10)
+    r = pipeline_union.union(ms, remesh=True, target_percent=2.0)
+    assert not r["remesh"]["from_exact_union"] and r["remesh"]["unmeshed_sides"] == 0
+    layers = [i for i in range(r["remesh_layer"] + 3) if ms.mesh_id_exists(i)]
+    assert len(layers) == 12 and layers[10:] == [r["union_layer"], r["remesh_layer"]]
+    assert ms.current_mesh_id() == r["remesh_layer"]
+    assert all(ms.is_mesh_visible(i) for i in layers)
+
+
 def test_pipeline_keeps_the_stepped_regrid_where_the_exact_unions_needles_do_worse():
     # box.STL: the exact arrangement's needles regrid to a face of 0.0 degrees; the stepped
     # union's regrid (0.97, bounded by plate corners 0.002 apart) stays.
