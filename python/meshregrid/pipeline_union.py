@@ -71,14 +71,17 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
 
         result["remesh"], regrid_id = regrid(union_id)
         result["remesh"]["from_exact_union"] = False
-        if regrid_exact_union_too and sliver_angle > 0 and _score(ms, regrid_id, result["remesh"]) < (True, 30.0):
-            regrid_id = _regrid_exact_union(ms, bodies, extra, before, input_layer, regrid, result, regrid_id)
+        if regrid_exact_union_too and sliver_angle > 0:
+            first = _score(ms, regrid_id, result["remesh"])
+            if first < (True, 30.0):
+                regrid_id = _regrid_exact_union(ms, bodies, extra, before, input_layer, regrid, result, regrid_id, first)
         result["remesh_layer"] = regrid_id
         ms.set_current_mesh(regrid_id)
     return result
 
 
 def _layer_ids(ms: pymeshlab.MeshSet) -> list:
+    """Ids of the layers, ascending (deleted layers leave gaps)."""
     ids, k = [], 0
     while len(ids) < ms.mesh_number():
         if ms.mesh_id_exists(k):
@@ -95,10 +98,9 @@ def _score(ms: pymeshlab.MeshSet, layer: int, r: dict) -> tuple:
     return (bool(closed), float(r["min_angle"]))
 
 
-def _regrid_exact_union(ms, bodies, extra, before, input_layer, regrid, result, regrid_id) -> int:
-    """The exact union regridded beside the first regrid; the worse of the two layers goes.
-    Returns the regrid layer that stays."""
-    first = _score(ms, regrid_id, result["remesh"])
+def _regrid_exact_union(ms, bodies, extra, before, input_layer, regrid, result, regrid_id, first) -> int:
+    """The exact union regridded beside the first regrid (whose _score is `first`); the worse
+    of the two goes. Returns the regrid layer that stays."""
     made = [i for i in _layer_ids(ms) if i not in before]
     shown = {i: ms.is_mesh_visible(i) for i in made}
     for i in made:  # the first union's layers are no bodies of the second
@@ -107,8 +109,7 @@ def _regrid_exact_union(ms, bodies, extra, before, input_layer, regrid, result, 
     try:
         ms.generate_surface_intersection_union(bodies=BODIES[bodies], sliver_angle=0.0, create_lines_layer=False,
                                                **extra)
-        exact_id = ms.current_mesh_id()
-        second, second_id = regrid(exact_id)
+        second, second_id = regrid(ms.current_mesh_id())
         better = _score(ms, second_id, second) > first
     except pymeshlab.PyMeshLabException:
         better = False  # (the first regrid stands; what the try made goes below)
