@@ -1,17 +1,21 @@
 #include "remesh/flat_pockets.h"
 
-#include <map>
+#include <algorithm>
+#include <utility>
+#include <vector>
 
 namespace mr::remesh {
 
 int remove_flat_pockets(OutputMesh& out) {
-  // Faces by their sorted points; a pair with opposite orientations goes. (Two with the same
-  // orientation would overlap, which the front's crossing checks prevent.)
-  std::map<std::array<int, 3>, std::vector<int>> by_points;
-  for (int f = 0; f < int(out.faces.size()); ++f) {
-    const auto& t = out.faces[size_t(f)];
-    by_points[OutputMesh::triangle_key(t[0], t[1], t[2])].push_back(f);
+  // Faces sorted by their sorted points (no allocation per face: outputs run to millions);
+  // a run of exactly two with opposite orientations goes. (Two with the same orientation
+  // would overlap, which the front's crossing checks prevent.)
+  std::vector<std::pair<std::array<int, 3>, int>> by_points(out.faces.size());
+  for (size_t f = 0; f < out.faces.size(); ++f) {
+    const auto& t = out.faces[f];
+    by_points[f] = {OutputMesh::triangle_key(t[0], t[1], t[2]), int(f)};
   }
+  std::sort(by_points.begin(), by_points.end());
   auto reversed = [&](int f, int g) {
     const auto& a = out.faces[size_t(f)];
     const auto& b = out.faces[size_t(g)];
@@ -21,9 +25,10 @@ int remove_flat_pockets(OutputMesh& out) {
   };
   std::vector<char> gone(out.faces.size(), 0);
   int pairs = 0;
-  for (const auto& [key, faces] : by_points) {
-    if (faces.size() != 2 || !reversed(faces[0], faces[1])) continue;
-    gone[size_t(faces[0])] = gone[size_t(faces[1])] = 1;
+  for (size_t i = 0, j; i < by_points.size(); i = j) {
+    for (j = i + 1; j < by_points.size() && by_points[j].first == by_points[i].first;) ++j;
+    if (j - i != 2 || !reversed(by_points[i].second, by_points[i + 1].second)) continue;
+    gone[size_t(by_points[i].second)] = gone[size_t(by_points[i + 1].second)] = 1;
     ++pairs;
   }
   if (pairs == 0) return 0;

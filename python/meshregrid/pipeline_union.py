@@ -74,7 +74,7 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
         if regrid_exact_union_too and sliver_angle > 0:
             first = _score(ms, regrid_id, result["remesh"])
             if first < (True, 30.0):
-                regrid_id = _regrid_exact_union(ms, bodies, extra, before, input_layer, regrid, result, regrid_id, first)
+                regrid_id = _regrid_exact_union(ms, bodies, before, input_layer, regrid, result, regrid_id, first)
         result["remesh_layer"] = regrid_id
         ms.set_current_mesh(regrid_id)
     return result
@@ -98,7 +98,7 @@ def _score(ms: pymeshlab.MeshSet, layer: int, r: dict) -> tuple:
     return (bool(closed), float(r["min_angle"]))
 
 
-def _regrid_exact_union(ms, bodies, extra, before, input_layer, regrid, result, regrid_id, first) -> int:
+def _regrid_exact_union(ms, bodies, before, input_layer, regrid, result, regrid_id, first) -> int:
     """The exact union regridded beside the first regrid (whose _score is `first`); the worse
     of the two goes. Returns the regrid layer that stays."""
     made = [i for i in _layer_ids(ms) if i not in before]
@@ -107,8 +107,8 @@ def _regrid_exact_union(ms, bodies, extra, before, input_layer, regrid, result, 
         ms.set_mesh_visibility(i, False)
     ms.set_current_mesh(input_layer)
     try:
-        ms.generate_surface_intersection_union(bodies=BODIES[bodies], sliver_angle=0.0, create_lines_layer=False,
-                                               **extra)
+        # (No attributes: the regrid does not keep them, and this union's layer goes.)
+        ms.generate_surface_intersection_union(bodies=BODIES[bodies], sliver_angle=0.0, create_lines_layer=False)
         second, second_id = regrid(ms.current_mesh_id())
         better = _score(ms, second_id, second) > first
     except pymeshlab.PyMeshLabException:

@@ -387,13 +387,10 @@ def test_pipeline_union_then_regrid_keeps_the_line_and_reaches_30_degrees():
 
 
 def _benchmark_cluster(n):
-    """scripts/bench_union.py's cluster: n icospheres (1280 faces) of radius 0.5, seed 1."""
+    """benchmark_cluster_parts(n, 3) as one layer per sphere."""
     ms = pymeshlab.MeshSet()
-    ms.create_sphere(radius=0.5, subdiv=3)
-    v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
-    ms.delete_current_mesh()
-    for c in np.random.default_rng(1).random((n, 3)) * (n ** (1 / 3)) * 0.9:
-        ms.add_mesh(pymeshlab.Mesh(v + c, f))
+    for v, f in benchmark_cluster_parts(n, 3):
+        ms.add_mesh(pymeshlab.Mesh(v, f))
     return ms
 
 
@@ -545,10 +542,9 @@ def test_cli_union_remesh_writes_the_regrid_that_stayed(tmp_path):
     import sys
     out, lines = tmp_path / "r.ply", tmp_path / "l.obj"
     parts = []
-    for k, c in enumerate(np.random.default_rng(1).random((10, 3)) * (10 ** (1 / 3)) * 0.9):
+    for k, (v, f) in enumerate(benchmark_cluster_parts(10, 3)):
         ms = pymeshlab.MeshSet()
-        ms.create_sphere(radius=0.5, subdiv=3)
-        ms.compute_matrix_from_translation(axisx=c[0], axisy=c[1], axisz=c[2])
+        ms.add_mesh(pymeshlab.Mesh(v, f))
         parts.append(tmp_path / f"s{k}.ply")
         ms.save_current_mesh(str(parts[-1]))
     proc = subprocess.run([sys.executable, "-m", "meshregrid", "union", *map(str, parts), str(out), "--lines",
@@ -574,17 +570,22 @@ def test_cli_union_components_of_one_file(tmp_path):
     assert json.loads(proc.stdout)["bodies"] == 9
 
 
-def benchmark_cluster(n, subdiv):
+def benchmark_cluster_parts(n, subdiv):
     """bench_union.py's cluster: n icospheres of radius 0.5 at seed-1 random centres in a cube of
-    side 0.9 n^(1/3), as one layer of components; returns it and manifold3d's union volume."""
+    side 0.9 n^(1/3), as (vertices, faces) per sphere."""
     ms = pymeshlab.MeshSet()
     ms.create_sphere(radius=0.5, subdiv=subdiv)
     v, f = ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix()
-    centres = np.random.default_rng(1).random((n, 3)) * n ** (1 / 3) * 0.9
+    return [(v + c, f) for c in np.random.default_rng(1).random((n, 3)) * n ** (1 / 3) * 0.9]
+
+
+def benchmark_cluster(n, subdiv):
+    """The cluster as one layer of components; returns it and manifold3d's union volume."""
+    parts = benchmark_cluster_parts(n, subdiv)
     ms = pymeshlab.MeshSet()
-    ms.add_mesh(pymeshlab.Mesh(np.concatenate([v + c for c in centres]),
-                               np.concatenate([f + i * len(v) for i in range(n)])))
-    return ms, reference([pymeshlab.Mesh(v + c, f) for c in centres])
+    ms.add_mesh(pymeshlab.Mesh(np.concatenate([v for v, _ in parts]),
+                               np.concatenate([f + i * len(parts[0][0]) for i, (_, f) in enumerate(parts)])))
+    return ms, reference([pymeshlab.Mesh(v, f) for v, f in parts])
 
 
 def test_sliver_step_on_a_ten_sphere_cluster_leaves_no_face_under_5_degrees():
