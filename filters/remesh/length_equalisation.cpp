@@ -17,17 +17,6 @@ constexpr double kCollapseDeviation = 0.05;
 // New faces may not turn by more than acos(0.7) from the faces they replace.
 constexpr double kFoldCos = 0.7;
 
-// Size at point v: the size field at its place on its host face.
-double size_at(const OutputMesh& out, const SurfaceLocator& locator, const SizeField& size, int v) {
-  const int f = out.host[v];
-  if (f < 0) return size.max_size();
-  const Surface& s = locator.surface();
-  std::array<double, 3> bary;
-  closest_point_on_triangle(out.points[v], s.points[s.faces[f][0]], s.points[s.faces[f][1]], s.points[s.faces[f][2]],
-                            bary);
-  return size.at(f, bary);
-}
-
 class EdgeLengthMoves {
 public:
   EdgeLengthMoves(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const SurfaceLocator& locator,
@@ -36,7 +25,7 @@ public:
         star_(out.points.size()), h_(out.points.size()) {
     for (size_t f = 0; f < out.faces.size(); ++f)
       for (int v : out.faces[f]) star_[v].push_back(int(f));
-    for (size_t v = 0; v < out.points.size(); ++v) h_[v] = size_at(out, locator, size, int(v));
+    for (size_t v = 0; v < out.points.size(); ++v) h_[v] = size_at_point(out, locator, size, int(v));
   }
 
   int collapse_short() {
@@ -278,7 +267,7 @@ int relax_edge_lengths(OutputMesh& out, const SurfaceLocator& locator, const Siz
   std::vector<int> nb;
   for (size_t v = 0; v < nv; ++v) {
     if (out.kind[v] != PointKind::Free || !movable[v] || begin[v] == begin[v + 1] || out.host[v] < 0) continue;
-    const double h = size_at(out, locator, size, int(v));
+    const double h = size_at_point(out, locator, size, int(v));
     nb.clear();
     for (int k = begin[v]; k < begin[v + 1]; ++k)
       for (int u : out.faces[ring[k]])

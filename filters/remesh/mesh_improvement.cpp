@@ -3,6 +3,7 @@
 #include "remesh/defect_reduction.h"
 #include "remesh/face_rings.h"
 #include "remesh/length_equalisation.h"
+#include "remesh/line_point_removal.h"
 #include "remesh/side_faces.h"
 #include "remesh/star_shape.h"
 #include "remesh/triangle_geometry.h"
@@ -147,6 +148,12 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vecto
   return moves;
 }
 
+std::unordered_set<std::uint64_t> feature_key_set(const std::vector<std::array<int, 2>>& feature_edges) {
+  std::unordered_set<std::uint64_t> keys;
+  for (const auto& e : feature_edges) keys.insert(undirected(e[0], e[1]));
+  return keys;
+}
+
 // Points within two edges of `moved` (all points when it is empty).
 std::vector<char> region_around(const OutputMesh& out, const std::vector<int>& moved) {
   std::vector<char> region(out.points.size(), moved.empty() ? 1 : 0);
@@ -162,14 +169,13 @@ std::vector<char> region_around(const OutputMesh& out, const std::vector<int>& m
 
 }  // namespace
 
-ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
+ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>& feature_edges,
                                const SurfaceLocator& locator, const SizeField& size, int iterations, std::vector<LinePath> line_paths,
                                const std::vector<int>& moved) {
   std::vector<char> region = region_around(out, moved);
   std::vector<char> movable(region);
   for (int v : moved) movable[v] = 0;
-  std::unordered_set<std::uint64_t> fixed;
-  for (const auto& e : feature_edges) fixed.insert(undirected(e[0], e[1]));
+  std::unordered_set<std::uint64_t> fixed = feature_key_set(feature_edges);
   ImprovementResult r;
   double worst = kValenceFloor;
   for (const auto& f : out.faces) worst = std::min(worst, min_angle(out.points, f));
@@ -194,14 +200,18 @@ ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int
     r.moves += moves;
     if (swaps == 0 && moves == 0 && collapsed == 0 && split == 0) break;
   }
-  // Line points slide last, where swaps and smoothing left bad faces around them; the free
-  // points around a moved one are smoothed again.
+  // Line points go or slide last, where swaps and smoothing left bad faces around them; the
+  // free points around a changed one are smoothed again.
   for (int it = 0; it < iterations; ++it) {
+    std::vector<int> changed = remove_line_points(out, line_paths, feature_edges, locator, size, kSlideBelow);
+    r.line_points_removed += int(changed.size());
     const std::vector<int> slid = slide_line_points(out, line_paths, kSlideBelow);
-    if (slid.empty()) break;
-    std::vector<char> near_slid = region_around(out, slid);
-    for (size_t v = 0; v < near_slid.size(); ++v) near_slid[v] = near_slid[v] && movable[v];
-    r.moves += int(slid.size()) + smooth_pass(out, locator, near_slid);
+    r.moves += int(slid.size());
+    changed.insert(changed.end(), slid.begin(), slid.end());
+    if (changed.empty()) break;
+    std::vector<char> near_changed = region_around(out, changed);
+    for (size_t v = 0; v < near_changed.size(); ++v) near_changed[v] = near_changed[v] && movable[v];
+    r.moves += smooth_pass(out, locator, near_changed);
   }
   return r;
 }

@@ -5,7 +5,8 @@
 // never drops. Then free points move, or go at short edges, for edge lengths within
 // [0.7, 1.4] x the size while their faces stay above 30 degrees or their old smallest angle
 // (length_equalisation.h). Feature edges are never swapped, corners never move and line points
-// only slide along their lines (line_sliding.h).
+// only slide along their lines (line_sliding.h) or go where their line does not need them
+// (line_point_removal.h).
 #pragma once
 
 #include "remesh/line_sliding.h"
@@ -23,13 +24,15 @@ struct ImprovementResult {
   int moves = 0;
   int collapsed = 0;  ///< free points removed by collapsing a short edge
   int split = 0;      ///< long edges split at their middle
+  int line_points_removed = 0;  ///< line points whose two segments became one (line_point_removal.h)
 };
 
 /// `feature_edges` are output edges that must stay (either orientation); the points of
-/// `line_paths` slide along them (none given: line points stay). `moved`: points just moved
+/// `line_paths` slide along them or, where the line does not need them, go (none given: line
+/// points stay); `feature_edges` then follow. `moved`: points just moved
 /// (snapped onto input vertices) that must stay there; the pass then works only within two edges
 /// of them, the rest having had its pass already (empty: the whole mesh).
-ImprovementResult improve_mesh(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
+ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>& feature_edges,
                                const SurfaceLocator& locator, const SizeField& size, int iterations,
                                std::vector<LinePath> line_paths = {}, const std::vector<int>& moved = {});
 

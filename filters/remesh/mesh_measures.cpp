@@ -26,6 +26,16 @@ double distance_to(const SurfaceLocator& locator, const Point3& p, int start, do
 
 }  // namespace
 
+double size_at_point(const OutputMesh& out, const SurfaceLocator& locator, const SizeField& size, int v) {
+  const int f = out.host[v];
+  if (f < 0) return size.max_size();
+  const Surface& s = locator.surface();
+  std::array<double, 3> bary;
+  closest_point_on_triangle(out.points[v], s.points[s.faces[f][0]], s.points[s.faces[f][1]], s.points[s.faces[f][2]],
+                            bary);
+  return size.at(f, bary);
+}
+
 Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, const SizeField& size) {
   Measures m;
   constexpr double kRad = 180.0 / 3.14159265358979323846;

@@ -19,6 +19,9 @@ struct Measures {
 /// estimate between `out` and the input surface of `input_locator`.
 Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, const SizeField& size);
 
+/// The size field at point v's place on its host face (the largest size when it has none).
+double size_at_point(const OutputMesh& out, const SurfaceLocator& locator, const SizeField& size, int v);
+
 /// How many of `edges` (feature line segments) are no edge of any face of `out`.
 int count_missing_edges(const OutputMesh& out, const std::vector<std::array<int, 2>>& edges);
 

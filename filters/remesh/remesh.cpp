@@ -324,7 +324,11 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_folded_
   result.flat_pockets_removed = remove_flat_pockets(out);
 
   progress(params, 80, "Improving: swaps and smoothing");
-  const ImprovementResult ir = improve_mesh(out, ff.feature_edges, locator, size, params.improvement_iterations, ff.line_paths);
+  // (Line points the line does not need may go: the feature edges follow.)
+  std::vector<std::array<int, 2>> feature_edges = ff.feature_edges;
+  const ImprovementResult ir = improve_mesh(out, feature_edges, locator, size, params.improvement_iterations, ff.line_paths);
+  result.line_points_removed = ir.line_points_removed;
+  result.feature_edges = int(feature_edges.size());
   result.swaps = ir.swaps;
   result.smoothed = ir.moves;
   result.collapsed = ir.collapsed;
@@ -337,7 +341,7 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_folded_
   // longer than 1.4 x target); the post-pass again around them, with them held on their vertices.
   if (!snapped.empty()) {
     const ImprovementResult again =
-        improve_mesh(out, ff.feature_edges, locator, size, params.improvement_iterations, {}, snapped);
+        improve_mesh(out, feature_edges, locator, size, params.improvement_iterations, {}, snapped);
     result.swaps += again.swaps;
     result.smoothed += again.moves;
     result.collapsed += again.collapsed;
@@ -347,19 +351,19 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_folded_
   // Last, pairs that bridge a crease stage 1 dropped turn to follow it (rocker-arm at 1%: 7 swaps,
   // output-to-input distance 0.00285 -> 0.00259 of the diagonal, angles and lengths unchanged).
   if (params.improvement_iterations > 0)
-    result.surface_swaps = swap_towards_surface(out, ff.feature_edges, locator, size);
+    result.surface_swaps = swap_towards_surface(out, feature_edges, locator, size);
 
   progress(params, 88, "Surface recovery");
   recover_surface(out, surface, params.recovery);
 
   progress(params, 92, "Measuring");
   const Measures m = measure(out, locator, size);
-  result.missing_feature_edges = count_missing_edges(out, ff.feature_edges);
+  result.missing_feature_edges = count_missing_edges(out, feature_edges);
   result.min_angle_deg = m.min_angle_deg;
   result.mean_min_angle_deg = m.mean_min_angle_deg;
   result.edges_in_range = m.edges_in_range;
   result.hausdorff = m.hausdorff;
-  build_output(out, ff.feature_edges, output);
+  build_output(out, feature_edges, output);
   progress(params, 100, "Done");
   return result;
 }

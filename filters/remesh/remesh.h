@@ -62,6 +62,7 @@ struct Result {
   int swaps = 0, smoothed = 0;  ///< post-pass moves
   int collapsed = 0;            ///< post-pass: free points removed at short edges
   int split = 0;                ///< post-pass: long edges split at their middle
+  int line_points_removed = 0;  ///< post-pass: line points whose two segments became one
   int snapped = 0;              ///< free points moved onto input vertices the output cut off
   int surface_swaps = 0;        ///< edges swapped to follow the input across creases not kept
   double min_angle_deg = 0;     ///< worst triangle angle

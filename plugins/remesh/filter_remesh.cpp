@@ -177,6 +177,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"unmeshed_patches", QVariant(r.unmeshed_patches)},
       {"missing_feature_edges", QVariant(r.missing_feature_edges)},
       {"flat_pockets_removed", QVariant(r.flat_pockets_removed)},
+      {"line_points_removed", QVariant(r.line_points_removed)},
       {"kept_folded_slivers", QVariant(r.kept_folded_slivers)},
       {"retried_patches", QVariant(r.retried_patches)},
       {"local_repairs", QVariant(r.local_repairs)},
