@@ -441,6 +441,26 @@ def test_pipeline_keeps_the_first_regrid_when_the_second_try_fails(monkeypatch):
     assert all(ms.is_mesh_visible(i) for i in layers)
 
 
+@pytest.mark.parametrize("target_percent", [1.0, 2.0])
+def test_pipeline_regrid_of_rabbit_obj_removes_line_points_that_pinch_thin_faces(target_percent):
+    # rabbit.obj's stepped union regridded: a line point beside a corner left a face of 5.67
+    # degrees at 1% and 2% (7.71 at 1% from the exact union). Removing that point lifts it to
+    # 12.29 degrees, the smallest wedge between two of the union's lines (a corner the sliver
+    # step made at (0.238, 1.42, 0.885); the input's own wedges are 64 degrees or more), which
+    # bounds every face in it.
+    from meshregrid import pipeline_union
+    ms, _ = multicomponent("rabbit.obj")
+    ms.set_current_mesh(0)
+    r = pipeline_union.union(ms, bodies="components", remesh=True, target_percent=target_percent,
+                             regrid_exact_union_too=False)
+    regrid = r["remesh"]
+    assert regrid["unmeshed_sides"] == 0
+    assert angles(ms.current_mesh()).min() >= 12.0
+    assert regrid["line_points_removed"] >= 1
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
+
 def test_pipeline_keeps_the_stepped_regrid_where_the_exact_unions_needles_do_worse():
     # box.STL: the exact arrangement's needles regrid to a face of 0.0 degrees; the stepped
     # union's regrid (0.97, bounded by plate corners 0.002 apart) stays.
