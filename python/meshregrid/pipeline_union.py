@@ -1,5 +1,8 @@
 """Pipeline: union of intersecting closed bodies, optionally regridded by stage 2 with
 the intersection lines kept as ridges."""
+from dataclasses import dataclass
+from typing import Callable
+
 import pymeshlab
 
 from . import pipeline_remesh
@@ -74,7 +77,8 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
         if regrid_exact_union_too and sliver_angle > 0:
             first = _score(ms, regrid_id, result["remesh"])
             if first < (True, 30.0):
-                regrid_id = _regrid_exact_union(ms, bodies, before, input_layer, regrid, result, regrid_id, first)
+                run = _UnionRun(ms, bodies, before, input_layer, regrid)
+                regrid_id = _regrid_exact_union(run, result, regrid_id, first)
         result["remesh_layer"] = regrid_id
         ms.set_current_mesh(regrid_id)
     return result
@@ -98,18 +102,30 @@ def _score(ms: pymeshlab.MeshSet, layer: int, r: dict) -> tuple:
     return (bool(closed), float(r["min_angle"]))
 
 
-def _regrid_exact_union(ms, bodies, before, input_layer, regrid, result, regrid_id, first) -> int:
+@dataclass
+class _UnionRun:
+    """What a second union of the same bodies needs: the layers before the first one, the
+    layer that was current, and the regrid call (target size and ridges as the first)."""
+    ms: pymeshlab.MeshSet
+    bodies: str
+    before: list
+    input_layer: int
+    regrid: Callable
+
+
+def _regrid_exact_union(run: _UnionRun, result: dict, regrid_id: int, first: tuple) -> int:
     """The exact union regridded beside the first regrid (whose _score is `first`); the worse
     of the two goes. Returns the regrid layer that stays."""
+    ms, before = run.ms, run.before
     made = [i for i in _layer_ids(ms) if i not in before]
     shown = {i: ms.is_mesh_visible(i) for i in made}
     for i in made:  # the first union's layers are no bodies of the second
         ms.set_mesh_visibility(i, False)
-    ms.set_current_mesh(input_layer)
+    ms.set_current_mesh(run.input_layer)
     try:
         # (No attributes: the regrid does not keep them, and this union's layer goes.)
-        ms.generate_surface_intersection_union(bodies=BODIES[bodies], sliver_angle=0.0, create_lines_layer=False)
-        second, second_id = regrid(ms.current_mesh_id())
+        ms.generate_surface_intersection_union(bodies=BODIES[run.bodies], sliver_angle=0.0, create_lines_layer=False)
+        second, second_id = run.regrid(ms.current_mesh_id())
         better = _score(ms, second_id, second) > first
     except pymeshlab.PyMeshLabException:
         better = False  # (the first regrid stands; what the try made goes below)
