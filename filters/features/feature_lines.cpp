@@ -55,6 +55,11 @@ bool is_shape_ridge(const TriMesh& mesh, const EdgeTable& edges, const std::vect
 // Sharper than this (the cosine between the faces' normals) is a fold for keep_folded_slivers:
 // the advancing front's normal test (n . n > 0.5) refuses the surface across it.
 constexpr double kCosFold = 0.5;
+// Sharper than this (90 degrees) is a face turned over: a narrow patch whose every border turns
+// over so is a crumple (faces of a union's sliver step folded back onto a flat side), not a
+// feature. (At 120 degrees a crumple of two faces, one turned 100 degrees against the other,
+// stayed half: joint.off united with turned copies regridded with points not manifold.)
+constexpr double kCosTurnedOver = 0.0;
 
 struct Flood {
   std::vector<int> patch_of_face;
@@ -240,6 +245,7 @@ double edge_length(const TriMesh& mesh, const EdgeTable& edges, int e) {
 struct Suppressed {
   int lines = 0, edges = 0;
   int folded_slivers = 0;  // sliver patches bordered by a fold among the lines
+  int crumples = 0;        // of those, crumples (turned over against the surface around them)
 };
 
 // Components of the ridge graph that are simple cycles (every vertex on two ridges, corners
@@ -286,13 +292,16 @@ int drop_short_cycles(const TriMesh& mesh, const EdgeTable& edges, const VertexR
 constexpr double kSliverArea = 0.1, kSliverShape = 0.02;
 
 int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
-                       const std::vector<char>& keep, const std::vector<char>& fold, bool keep_folded,
-                       double min_length, Suppressed& s) {
+                       const std::vector<char>& keep, const std::vector<char>& fold,
+                       const std::vector<char>& turned_over, const Params& params, Suppressed& s) {
+  const bool keep_folded = params.keep_folded_slivers;
+  const double min_length = params.min_line_length;
   const Flood flood = flood_patches(mesh, edges, edge_is_ridge);
   std::vector<double> border(flood.count, 0.0), area(flood.count, 0.0);
   for (size_t f = 0; f < mesh.face.size(); ++f) area[flood.patch_of_face[f]] += 0.5 * vcg::DoubleArea(mesh.face[f]);
   std::vector<char> fixed(flood.count, 0);  // touches an edge that never goes
   std::vector<char> folded(flood.count, 0);  // touches a fold
+  std::vector<char> crumpled(flood.count, 1);  // every border turns over
   for (int e = 0; e < edges.edge_count(); ++e) {
     if (!edge_is_ridge[e]) continue;
     const double length = edge_length(mesh, edges, e);
@@ -301,25 +310,53 @@ int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector
       border[patch] += length;
       if (keep[e]) fixed[patch] = 1;
       if (fold[e]) folded[patch] = 1;
+      if (!turned_over[e]) crumpled[patch] = 0;
     }
   }
-  std::vector<char> island(flood.count, 0);
+  // A crumple lies in a surface that is smooth around it: the faces across its borders are no
+  // fold apart from each other (kCosFold). Else dropping it would join patches a crease
+  // separates (box.STL's plates as layers: a patch through a plate corner, its points then not
+  // manifold).
+  std::vector<std::vector<Point3>> around(flood.count);
+  for (int e = 0; e < edges.edge_count(); ++e) {
+    if (!edge_is_ridge[e] || edges.valence(e) != 2) continue;
+    for (int k = 0; k < 2; ++k) {
+      const int patch = flood.patch_of_face[edges.side(e, k).face];
+      if (crumpled[patch]) around[patch].push_back(vcg::NormalizedTriangleNormal(mesh.face[edges.side(e, 1 - k).face]));
+    }
+  }
   for (int p = 0; p < flood.count; ++p)
-    island[p] = !fixed[p] && !(keep_folded && folded[p]) && border[p] > 0 &&
-                area[p] < kSliverArea * min_length * min_length && area[p] < kSliverShape * border[p] * border[p];
+    for (size_t i = 0; i < around[p].size() && crumpled[p]; ++i)
+      for (size_t j = 0; j < i; ++j)
+        if (around[p][i] * around[p][j] < kCosFold) {
+          crumpled[p] = 0;
+          break;
+        }
+  // Crumples go although a kept edge borders them (an intersection line passing along one): as
+  // their own patches they were meshed on top of the side around them (its points then not
+  // manifold), and merged with the side but bounded by that edge the front along it faced the
+  // wrong way. The kept edge loses that segment; boundary and non-manifold edges never go.
+  std::vector<char> island(flood.count, 0), crumple(flood.count, 0);
+  for (int p = 0; p < flood.count; ++p) {
+    if (!(border[p] > 0) || (keep_folded && folded[p])) continue;
+    crumple[p] = params.drop_crumples && crumpled[p] && 2 * area[p] < min_length * border[p];
+    island[p] = crumple[p] || (!fixed[p] && area[p] < kSliverArea * min_length * min_length &&
+                               area[p] < kSliverShape * border[p] * border[p]);
+  }
   int dropped = 0;
   std::vector<char> counted(flood.count, 0);
   for (int e = 0; e < edges.edge_count(); ++e) {
-    if (!edge_is_ridge[e] || keep[e]) continue;
+    if (!edge_is_ridge[e] || edges.valence(e) != 2) continue;
     bool on_island = false;
     for (int k = 0; k < edges.valence(e); ++k) {
       const int patch = flood.patch_of_face[edges.side(e, k).face];
-      if (!island[patch]) continue;
+      if (!island[patch] || (keep[e] && !crumple[patch])) continue;
       on_island = true;
       if (!counted[patch]) {
         counted[patch] = 1;
         s.lines++;
         s.folded_slivers += folded[patch];
+        s.crumples += crumple[patch];
         dropped++;
       }
     }
@@ -332,10 +369,12 @@ int drop_sliver_patches(const TriMesh& mesh, const EdgeTable& edges, std::vector
 
 // Feature-noise suppression: lines shorter than min_length with a dangling end, and short closed
 // lines (a loop from a junction back to it), are dropped; then short simple cycles; then the
-// borders of small sliver patches. Repeated,
-// since a dropped branch can leave a junction with one ridge less. `keep` edges never go.
+// borders of small sliver patches and of crumples. Repeated,
+// since a dropped branch can leave a junction with one ridge less. `keep` edges never go but
+// around crumples, and boundary and non-manifold edges never.
 Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std::vector<char>& edge_is_ridge,
-                                const std::vector<char>& keep, const std::vector<char>& fold, const Params& p) {
+                                const std::vector<char>& keep, const std::vector<char>& fold,
+                                const std::vector<char>& turned_over, const Params& p) {
   Suppressed s;
   if (p.min_line_length <= 0) return s;
   const int nv = int(mesh.vert.size());
@@ -362,7 +401,7 @@ Suppressed suppress_short_lines(const TriMesh& mesh, const EdgeTable& edges, std
     }
     const VertexRidges after = vertex_ridges(nv, edges, edge_is_ridge);
     dropped += drop_short_cycles(mesh, edges, after, edge_is_ridge, keep, p.min_line_length, s);
-    if (dropped == 0) dropped = drop_sliver_patches(mesh, edges, edge_is_ridge, keep, fold, p.keep_folded_slivers, p.min_line_length, s);
+    if (dropped == 0) dropped = drop_sliver_patches(mesh, edges, edge_is_ridge, keep, fold, turned_over, p, s);
     if (dropped == 0) return s;
   }
 }
@@ -381,6 +420,7 @@ Result detect(const TriMesh& mesh, const Params& params) {
   std::vector<char> edge_is_ridge(edges.edge_count(), 0);
   std::vector<char> keep(edges.edge_count(), 0);  // ridges the noise suppression never drops
   std::vector<char> fold(edges.edge_count(), 0);  // ridges sharper than kCosFold (read only for ridges)
+  std::vector<char> turned_over(edges.edge_count(), 0);  // ridges sharper than kCosTurnedOver
   for (int e = 0; e < edges.edge_count(); ++e) {
     int val = edges.valence(e);
     if (val == 1) ++result.boundary_edges;
@@ -388,16 +428,18 @@ Result detect(const TriMesh& mesh, const Params& params) {
     edge_is_ridge[e] = is_shape_ridge(mesh, edges, normals, e, cos_ridge);
     keep[e] = val != 2;
     fold[e] = edge_is_ridge[e] && is_shape_ridge(mesh, edges, normals, e, kCosFold);
+    turned_over[e] = fold[e] && is_shape_ridge(mesh, edges, normals, e, kCosTurnedOver);
   }
   if (params.use_selected_edges_as_ridges)
     for (int f = 0; f < nf; ++f)
       for (int z = 0; z < 3; ++z)
         if (mesh.face[f].IsFaceEdgeS(z)) edge_is_ridge[edges.edge_of(f, z)] = keep[edges.edge_of(f, z)] = 1;
 
-  const Suppressed suppressed = suppress_short_lines(mesh, edges, edge_is_ridge, keep, fold, params);
+  const Suppressed suppressed = suppress_short_lines(mesh, edges, edge_is_ridge, keep, fold, turned_over, params);
   result.suppressed_lines = suppressed.lines;
   result.suppressed_ridge_edges = suppressed.edges;
   result.suppressed_folded_slivers = suppressed.folded_slivers;
+  result.suppressed_crumples = suppressed.crumples;
 
   Flood flood = flood_patches(mesh, edges, edge_is_ridge);
   result.merged_patches = merge_small_patches(edges, edge_is_ridge, flood, params.min_patch_faces);

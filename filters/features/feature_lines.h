@@ -20,14 +20,18 @@ struct Params {
   int min_patch_faces = 0;
   /// Feature-noise suppression (absolute length, 0 = keep every ridge): repeatedly drops lines
   /// shorter than this with a dangling end (an end vertex on that one ridge only) and closed
-  /// ridge loops shorter than this, ridges an element of this size cannot represent. Boundary,
-  /// non-manifold and selected edges are never dropped.
+  /// ridge loops shorter than this, ridges an element of this size cannot represent; then the
+  /// borders of sliver patches and of crumples (patches turned over, by more than 90 degrees,
+  /// against every neighbour, narrower than this on average). Boundary and non-manifold edges
+  /// are never dropped, selected edges only around crumples.
   double min_line_length = 0;
   /// The suppression keeps the sliver patches bordered by a ridge sharper than 60 degrees
   /// (faces' normals further apart): merged across such a fold, a patch is one the advancing
   /// front cannot mesh (box.STL united). Off by default: a scan's noise has such slivers too,
   /// and dropping them gives better elements there.
   bool keep_folded_slivers = false;
+  /// The suppression drops crumples (see min_line_length); false keeps them as patches.
+  bool drop_crumples = true;
 };
 
 /// One chain of ridge edges between two corners, or a closed loop without corners.
@@ -49,6 +53,7 @@ struct Result {
   int suppressed_lines = 0;   ///< short dangling lines, loops and sliver patches dropped by min_line_length
   int suppressed_ridge_edges = 0;  ///< their ridge edges
   int suppressed_folded_slivers = 0;  ///< of the sliver patches, those bordered by a fold (Params::keep_folded_slivers)
+  int suppressed_crumples = 0;  ///< of those, crumples (Params::drop_crumples)
 };
 
 /// Detects ridges, corners, discrete lines and patches.

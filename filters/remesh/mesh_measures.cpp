@@ -85,4 +85,39 @@ int count_missing_edges(const OutputMesh& out, const std::vector<std::array<int,
   return missing;
 }
 
+int count_pinched_points(const OutputMesh& out) {
+  // Per point, the sides opposite it in its faces (CSR); one fan links them into one chain.
+  const size_t n = out.points.size();
+  std::vector<int> begin(n + 1, 0);
+  for (const auto& t : out.faces)
+    for (int v : t) ++begin[size_t(v) + 1];
+  for (size_t v = 0; v < n; ++v) begin[v + 1] += begin[v];
+  std::vector<std::array<int, 2>> sides(static_cast<size_t>(begin[n]));
+  std::vector<int> fill(begin.begin(), begin.end() - 1);
+  for (const auto& t : out.faces)
+    for (int z = 0; z < 3; ++z) sides[size_t(fill[size_t(t[z])]++)] = {t[(z + 1) % 3], t[(z + 2) % 3]};
+  int pinched = 0;
+  std::vector<int> ids, parent;
+  for (size_t v = 0; v < n; ++v) {
+    ids.clear();
+    for (int k = begin[v]; k < begin[v + 1]; ++k) ids.insert(ids.end(), sides[size_t(k)].begin(), sides[size_t(k)].end());
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    parent.resize(ids.size());
+    for (size_t i = 0; i < ids.size(); ++i) parent[i] = int(i);
+    auto find = [&](int x) {
+      while (parent[size_t(x)] != x) x = parent[size_t(x)] = parent[size_t(parent[size_t(x)])];
+      return x;
+    };
+    auto at = [&](int id) { return int(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin()); };
+    int roots = int(ids.size());
+    for (int k = begin[v]; k < begin[v + 1]; ++k) {
+      const int a = find(at(sides[size_t(k)][0])), b = find(at(sides[size_t(k)][1]));
+      if (a != b) { parent[size_t(a)] = b; --roots; }
+    }
+    if (roots > 1) ++pinched;
+  }
+  return pinched;
+}
+
 }  // namespace mr::remesh

@@ -22,6 +22,9 @@ Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, con
 /// The size field at point v's place on its host face (the largest size when it has none).
 double size_at_point(const OutputMesh& out, const SurfaceLocator& locator, const SizeField& size, int v);
 
+/// Points of `out` whose faces make more than one fan (the surface is not manifold there).
+int count_pinched_points(const OutputMesh& out);
+
 /// How many of `edges` (feature line segments) are no edge of any face of `out`.
 int count_missing_edges(const OutputMesh& out, const std::vector<std::array<int, 2>>& edges);
 

@@ -261,9 +261,14 @@ const TriMesh& coherently_oriented(const TriMesh& input, TriMesh& copy) {
   return copy;
 }
 
-/// The regridding itself, on an input that lies about as close to the origin as it is large;
-/// `keep_folded_slivers` goes to stage 1's noise suppression.
-Result remesh_once(const TriMesh& given, const Params& params, bool keep_folded_slivers, TriMesh& output) {
+/// What stage 1's noise suppression drops of the sliver patches in one regridding.
+struct SliverChoice {
+  bool drop_crumples = true;
+  bool keep_folded_slivers = false;
+};
+
+/// The regridding itself, on an input that lies about as close to the origin as it is large.
+Result remesh_once(const TriMesh& given, const Params& params, SliverChoice choice, TriMesh& output) {
   require_no_duplicate_faces(given);
   require_some_area(given);
   TriMesh oriented;
@@ -280,13 +285,15 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_folded_
   fp.corner_angle_deg = params.corner_angle_deg;
   fp.use_selected_edges_as_ridges = params.use_selected_edges_as_ridges;
   fp.min_line_length = params.min_line_length < 0 ? params.target_length : params.min_line_length;
-  fp.keep_folded_slivers = keep_folded_slivers;
+  fp.keep_folded_slivers = choice.keep_folded_slivers;
+  fp.drop_crumples = choice.drop_crumples;
   const features::Result fr = features::detect(input, fp);
   result.corners = int(fr.corners.size());
   result.lines = int(fr.lines.size());
   result.patches = fr.patch_count;
   result.suppressed_lines = fr.suppressed_lines;
   result.suppressed_folded_slivers = fr.suppressed_folded_slivers;
+  result.suppressed_crumples = fr.suppressed_crumples;
 
   progress(params, 8, "Building the size field and the surface index");
   const Surface surface = Surface::from_mesh(input, fr.patch_of_face);
@@ -359,6 +366,7 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_folded_
   progress(params, 92, "Measuring");
   const Measures m = measure(out, locator, size);
   result.missing_feature_edges = count_missing_edges(out, feature_edges);
+  result.non_manifold_points = count_pinched_points(out);
   result.min_angle_deg = m.min_angle_deg;
   result.mean_min_angle_deg = m.mean_min_angle_deg;
   result.edges_in_range = m.edges_in_range;
@@ -368,25 +376,40 @@ Result remesh_once(const TriMesh& given, const Params& params, bool keep_folded_
   return result;
 }
 
-/// The regridding, and where it left sides open after the noise suppression merged sliver
-/// patches across folds, a second one that keeps those patches; the one with fewer open sides
-/// stays. (box.STL united, at 1% with the default min_line_length: 19 patches open, then none.
-/// A scan's noise has such slivers too, and there dropping them gives better elements: so only
-/// as a second try.)
+/// Open sides first, then points that are not manifold: the fewer, the better.
+bool fewer_defects(const Result& a, const Result& b) {
+  return std::make_pair(a.unmeshed_sides, a.non_manifold_points) < std::make_pair(b.unmeshed_sides, b.non_manifold_points);
+}
+
+/// The regridding, and where it left sides open or points not manifold, more tries with less
+/// of stage 1's noise suppression; the one with the fewest defects stays (the first on a tie).
+/// First the crumples it dropped are kept: merged into the side around them, some left that
+/// side's front pinched (joint.off united with a copy whose sides coincide with its own, where
+/// kept as patches others had been meshed on top of it). Then the sliver patches bordered by
+/// folds are kept too: merged across a fold, a patch is one the front cannot mesh (box.STL
+/// united, at 1% with the default min_line_length: 19 patches open, then none). A scan's noise
+/// has such slivers too, and there dropping them gives better elements: so only as a retry.
 Result remesh_near_origin(const TriMesh& given, const Params& params, TriMesh& output) {
-  Result first = remesh_once(given, params, false, output);
-  if (first.unmeshed_sides == 0 || first.suppressed_folded_slivers == 0) return first;
-  TriMesh again;
-  Params second_params = params;  // its progress said as such (the bar starts again)
-  if (params.progress)
-    second_params.progress = [&params](int percent, const char* what) {
-      params.progress(percent, (std::string("Meshing again, keeping folded sliver patches: ") + what).c_str());
-    };
-  Result second = remesh_once(given, second_params, true, again);
-  if (second.unmeshed_sides >= first.unmeshed_sides) return first;
-  vcg::tri::Append<TriMesh, TriMesh>::MeshCopyConst(output, again);  // flags (features) too
-  second.kept_folded_slivers = true;
-  return second;
+  Result best = remesh_once(given, params, SliverChoice{}, output);
+  auto retry = [&](SliverChoice choice, const char* what) {
+    if (best.unmeshed_sides == 0 && best.non_manifold_points == 0) return;
+    TriMesh again;
+    Params retry_params = params;  // its progress said as such (the bar starts again)
+    if (params.progress)
+      retry_params.progress = [&params, what](int percent, const char* step) {
+        params.progress(percent, (std::string("Meshing again, ") + what + ": " + step).c_str());
+      };
+    Result r = remesh_once(given, retry_params, choice, again);
+    if (!fewer_defects(r, best)) return;
+    output.Clear();
+    vcg::tri::Append<TriMesh, TriMesh>::MeshCopyConst(output, again);  // flags (features) too
+    r.kept_crumples = true;
+    r.kept_folded_slivers = choice.keep_folded_slivers;
+    best = r;
+  };
+  if (best.suppressed_crumples > 0) retry(SliverChoice{false, false}, "keeping crumpled patches");
+  if (best.suppressed_folded_slivers > 0) retry(SliverChoice{false, true}, "keeping folded sliver patches");
+  return best;
 }
 
 /// An output without a face is no result: it is said as an error, so that the caller's

@@ -45,6 +45,7 @@ struct Result {
   int corners = 0, lines = 0, patches = 0;
   int suppressed_lines = 0;     ///< short dangling lines and loops stage 1 dropped
   int suppressed_folded_slivers = 0;  ///< of those, sliver patches bordered by a fold
+  int suppressed_crumples = 0;  ///< of those, crumples (patches turned over against the surface around)
   int feature_edges = 0;
   int merged_lines = 0;         ///< lines merged with a nearly coincident twin (sliver patch dropped)
   int thin_patches = 0;         ///< strips narrower than the elements, given one layer of faces
@@ -54,9 +55,14 @@ struct Result {
   /// them (the end of a dangling line a hair beside another line or corner).
   int missing_feature_edges = 0;
   int flat_pockets_removed = 0;  ///< face pairs on the same three points, facing apart (flat_pockets.h)
-  /// The first regridding left sides open, and a second one that kept the sliver patches
-  /// bordered by folds (stage 1's keep_folded_slivers) left fewer: this is the second.
+  /// The first regridding left sides open or points not manifold, and a later one that kept
+  /// the sliver patches bordered by folds (stage 1's keep_folded_slivers) left fewer: this is it.
   bool kept_folded_slivers = false;
+  /// The first regridding left sides open or points not manifold, and a second one that kept
+  /// the crumples stage 1 had dropped as patches did better: this is the second (or the third,
+  /// with kept_folded_slivers).
+  bool kept_crumples = false;
+  int non_manifold_points = 0;  ///< output points whose faces make more than one fan
   int retried_patches = 0;      ///< patch meshings repeated with smaller elements
   int local_repairs = 0;        ///< holes around open sides or pinched points meshed again, smaller
   int swaps = 0, smoothed = 0;  ///< post-pass moves

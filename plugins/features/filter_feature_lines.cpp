@@ -177,6 +177,7 @@ std::map<std::string, QVariant> FilterFeatureLinesPlugin::applyFilter(
       {"suppressed_lines", QVariant(r.suppressed_lines)},
       {"suppressed_ridge_edges", QVariant(r.suppressed_ridge_edges)},
       {"suppressed_folded_slivers", QVariant(r.suppressed_folded_slivers)},
+      {"suppressed_crumples", QVariant(r.suppressed_crumples)},
       {"time_ms", QVariant(ms)},
   };
 }

@@ -150,8 +150,12 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
   const double ms = double(timer.nsecsElapsed()) * 1e-6;
   log("Advancing front: %d vertices, %d faces, min angle %.2f deg, %d unmeshed front sides (%.1f ms)",
       int(output.vert.size()), int(output.face.size()), r.min_angle_deg, r.unmeshed_sides, ms);
-  if (r.kept_folded_slivers)
-    log("Meshed a second time keeping the sliver patches bordered by folds: the first left front sides open");
+  if (r.kept_crumples)
+    log("Meshed again keeping the crumpled patches%s: the first meshing left front sides open or points "
+        "not manifold",
+        r.kept_folded_slivers ? " and the sliver patches bordered by folds" : "");
+  if (r.non_manifold_points > 0)
+    log("%d points are not manifold (their faces make more than one fan)", r.non_manifold_points);
   if (r.flat_pockets_removed > 0)
     log("%d pairs of faces on the same three points, facing apart, removed: a patch folded onto itself "
         "closed the same triangle from both sides",
@@ -179,6 +183,8 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"flat_pockets_removed", QVariant(r.flat_pockets_removed)},
       {"line_points_removed", QVariant(r.line_points_removed)},
       {"kept_folded_slivers", QVariant(r.kept_folded_slivers)},
+      {"kept_crumples", QVariant(r.kept_crumples)},
+      {"non_manifold_points", QVariant(r.non_manifold_points)},
       {"retried_patches", QVariant(r.retried_patches)},
       {"local_repairs", QVariant(r.local_repairs)},
       {"merged_lines", QVariant(r.merged_lines)},

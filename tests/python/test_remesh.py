@@ -480,6 +480,8 @@ def test_damaged_input_that_no_front_can_close_returns_and_reports_it():
     # patch never close and every step looked at all of them, so the filter ran for more than a
     # quarter of an hour. Each front's work is now bounded as well as its steps (the benchmark
     # meshes use at most 1/60 of the bound): the filter returns with the open sides reported.
+    # Measured: 975 faces and 520 open sides (2153 and 1996 while crumples, turned-over faces the
+    # damage makes, stayed patches of their own; merged, fewer patches fail, but larger ones).
     ms = load("cad/blade.off")
     v = ms.current_mesh().vertex_matrix().copy()
     f = ms.current_mesh().face_matrix()
@@ -490,7 +492,7 @@ def test_damaged_input_that_no_front_can_close_returns_and_reports_it():
     before = snapshot(damaged.current_mesh())
     res = damaged.meshing_advancing_front_remesh(target_length=pymeshlab.PercentageValue(5.0), ridge_angle=20.0)
     assert res["unmeshed_sides"] > 0 and res["unmeshed_patches"] > 0
-    assert damaged.mesh_number() == 2 and damaged.current_mesh().face_number() > 1000
+    assert damaged.mesh_number() == 2 and damaged.current_mesh().face_number() > 500
     assert_unchanged(before, damaged.mesh(0))
 
 
