@@ -408,7 +408,9 @@ Result remesh_near_origin(const TriMesh& given, const Params& params, TriMesh& o
     best = r;
   };
   if (best.suppressed_crumples > 0) retry(SliverChoice{false, false}, "keeping crumpled patches");
-  if (best.suppressed_folded_slivers > 0) retry(SliverChoice{false, true}, "keeping folded sliver patches");
+  // (Crumples are folded slivers too: kept already, they need no third meshing.)
+  if (best.suppressed_folded_slivers > best.suppressed_crumples)
+    retry(SliverChoice{false, true}, "keeping folded sliver patches");
   return best;
 }
 
