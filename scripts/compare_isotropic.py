@@ -232,7 +232,18 @@ def main(argv=None):
     ap.add_argument("--peers", default="netgen,mmg",
                     help="optional peers to run when installed (comma list of netgen, mmg; empty for none)")
     ap.add_argument("--benchmark-md", action="store_true", help="also write benchmarks/remesh.md")
+    ap.add_argument("--allow-missing-peers", action="store_true",
+                    help="with --benchmark-md: write the table although a peer asked for is not installed")
     args = ap.parse_args(argv)
+    # A peer asked for but not installed is said, not silently left out: a table written without it
+    # would replace one that had it.
+    missing = [peer for peer in filter(None, args.peers.split(",")) if not peer_available(peer)]
+    if missing:
+        print(f"peers not installed, left out: {', '.join(missing)} "
+              "(pip install -r python/requirements-peers.txt)", file=sys.stderr)
+        if args.benchmark_md and not args.allow_missing_peers:
+            print("not writing benchmarks/ without them; --allow-missing-peers writes it anyway", file=sys.stderr)
+            return 2
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     rows, hist = [], {}
