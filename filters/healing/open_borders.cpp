@@ -2,7 +2,7 @@
 
 #include "common/uniform_grid.h"
 #include "healing/border_grid.h"
-#include "healing/segment_geometry.h"
+#include "common/segment_geometry.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,6 @@
 #include "remesh/feature_front.h"
 
+#include "common/segment_geometry.h"
 #include "remesh/strip_staggering.h"
 
 #include <algorithm>
@@ -26,12 +27,7 @@ struct VertexFaces {
 
 double distance_to_polyline(const Point3& p, const std::vector<Point3>& to) {
   double best = to.empty() ? std::numeric_limits<double>::max() : (p - to[0]).Norm();
-  for (size_t k = 0; k + 1 < to.size(); ++k) {
-    const Point3 d = to[k + 1] - to[k];
-    const double len2 = d.SquaredNorm();
-    const double t = len2 > 0 ? std::clamp(((p - to[k]) * d) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (to[k] + d * t - p).Norm());
-  }
+  for (size_t k = 0; k + 1 < to.size(); ++k) best = std::min(best, point_segment_distance(p, to[k], to[k + 1]));
   return best;
 }
 

@@ -1,6 +1,7 @@
 #include "remesh/length_equalisation.h"
 
 #include "remesh/face_rings.h"
+#include "remesh/point_stars.h"
 #include "remesh/star_shape.h"
 #include "remesh/triangle_geometry.h"
 
@@ -22,9 +23,7 @@ public:
   EdgeLengthMoves(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const SurfaceLocator& locator,
                   const SizeField& size, const std::vector<char>& movable, double floor)
       : out_(out), fixed_(fixed), locator_(locator), size_(size), movable_(movable), floor_(floor),
-        star_(out.points.size()), h_(out.points.size()) {
-    for (size_t f = 0; f < out.faces.size(); ++f)
-      for (int v : out.faces[f]) star_[v].push_back(int(f));
+        stars_(out), h_(out.points.size()) {
     for (size_t v = 0; v < out.points.size(); ++v) h_[v] = size_at_point(out, locator, size, int(v));
   }
 
@@ -55,7 +54,7 @@ public:
       collapse(remove, remove == a ? b : a);
       ++done;
     }
-    drop_dead_faces();
+    drop_dead_faces(out_);
     return done;
   }
 
@@ -88,7 +87,7 @@ private:
   const SizeField& size_;
   const std::vector<char>& movable_;
   double floor_;
-  std::vector<std::vector<int>> star_;  // live faces around each point
+  PointStars stars_;
   std::vector<double> h_;               // size at each point
 
   bool removable(int v) const { return out_.kind[v] == PointKind::Free && movable_[v]; }
@@ -102,7 +101,7 @@ private:
   bool edge_faces(int a, int b, int& f, int& g) const {
     f = g = -1;
     if (fixed_.count(OutputMesh::edge_key(a, b))) return false;
-    for (int k : star_[a]) {
+    for (int k : stars_.of(a)) {
       const auto& t = out_.faces[k];
       if (t[0] != b && t[1] != b && t[2] != b) continue;
       if (f < 0) f = k;
@@ -112,38 +111,19 @@ private:
     return g >= 0 && out_.face_patch[f] == out_.face_patch[g];
   }
 
-  std::vector<int> neighbours(int v) const {
-    std::vector<int> n;
-    for (int k : star_[v])
-      for (int u : out_.faces[k])
-        if (u != v) n.push_back(u);
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-    return n;
-  }
-
   // Smallest angle of the faces after free point v moves onto w, or -1 when that is not allowed.
   double quality_after(int v, int w) const {
     int f, g;
     if (!edge_faces(v, w, f, g)) return -1;
-    // Link condition: v and w share no neighbour but the third points of f and g.
-    std::vector<int> opposite;
-    for (int k : {f, g})
-      for (int u : out_.faces[k])
-        if (u != v && u != w) opposite.push_back(u);
-    std::sort(opposite.begin(), opposite.end());
-    const std::vector<int> nv = neighbours(v), nw = neighbours(w);
-    std::vector<int> common;
-    std::set_intersection(nv.begin(), nv.end(), nw.begin(), nw.end(), std::back_inserter(common));
-    if (common != opposite) return -1;
+    if (!stars_.link_condition(out_, v, w, {f, g})) return -1;
     double before = 1e9;
     for (int x : {v, w})
-      for (int k : star_[x]) before = std::min(before, min_angle(out_.points, out_.faces[k]));
+      for (int k : stars_.of(x)) before = std::min(before, min_angle(out_.points, out_.faces[k]));
     const double limit = std::min(before, floor_);
     const Point3& p = out_.points[w];
     double after = 1e9;
     std::vector<std::array<Point3, 3>> fan;
-    for (int k : star_[v]) {
+    for (int k : stars_.of(v)) {
       if (k == f || k == g) continue;
       const auto& t = out_.faces[k];
       std::array<Point3, 3> q;
@@ -160,7 +140,7 @@ private:
       deviation = std::min(deviation, (closest_point_on_triangle(out_.points[v], q[0], q[1], q[2], bary) - out_.points[v]).Norm());
     }
     if (fan.empty() || deviation > kCollapseDeviation * h_[v]) return -1;
-    for (int u : nv)
+    for (int u : stars_.neighbours(out_, v))
       if (u != w && length(w, u) > kLongEdge * h(w, u)) return -1;
     return after;
   }
@@ -168,19 +148,7 @@ private:
   void collapse(int v, int w) {
     int f, g;
     edge_faces(v, w, f, g);
-    for (int k : {f, g}) {
-      for (int u : out_.faces[k]) {
-        auto& s = star_[u];
-        s.erase(std::remove(s.begin(), s.end(), k), s.end());
-      }
-      out_.faces[k] = {-1, -1, -1};
-    }
-    for (int k : star_[v]) {
-      for (int& u : out_.faces[k])
-        if (u == v) u = w;
-      star_[w].push_back(k);
-    }
-    star_[v].clear();
+    stars_.collapse(out_, v, w, {f, g});
   }
 
   // Splits inner edge a-b at its middle (on the input) when the four new faces stay above
@@ -224,7 +192,7 @@ private:
     }
     const int v = out_.add_point(m, pr.face, PointKind::Free);
     h_.push_back(hm);
-    star_.emplace_back();
+    stars_.add_point();
     const int f2 = int(out_.faces.size()), g2 = f2 + 1;
     out_.faces[f] = {a, v, c};
     out_.faces[g] = {b, v, d};
@@ -232,26 +200,18 @@ private:
     out_.faces.push_back({v, a, d});
     out_.face_patch.push_back(out_.face_patch[f]);
     out_.face_patch.push_back(out_.face_patch[g]);
-    auto drop = [&](int u, int k) { star_[u].erase(std::remove(star_[u].begin(), star_[u].end(), k), star_[u].end()); };
+    auto drop = [&](int u, int k) {
+      auto& star = stars_.of(u);
+      star.erase(std::remove(star.begin(), star.end(), k), star.end());
+    };
     drop(b, f);
     drop(a, g);
-    star_[b].push_back(f2);
-    star_[c].push_back(f2);
-    star_[a].push_back(g2);
-    star_[d].push_back(g2);
-    star_[v] = {f, g, f2, g2};
+    stars_.of(b).push_back(f2);
+    stars_.of(c).push_back(f2);
+    stars_.of(a).push_back(g2);
+    stars_.of(d).push_back(g2);
+    stars_.of(v) = {f, g, f2, g2};
     return true;
-  }
-
-  void drop_dead_faces() {
-    size_t n = 0;
-    for (size_t f = 0; f < out_.faces.size(); ++f) {
-      if (out_.faces[f][0] < 0) continue;
-      out_.faces[n] = out_.faces[f];
-      out_.face_patch[n++] = out_.face_patch[f];
-    }
-    out_.faces.resize(n);
-    out_.face_patch.resize(n);
   }
 };
 

@@ -1,11 +1,11 @@
-// Point-to-segment measures shared by the border pairing and the gap report.
+// Point-to-segment measures (healing's border pairing and gap report, the remesher's lines).
 #pragma once
 
 #include "common/tri_mesh.h"
 
 #include <algorithm>
 
-namespace mr::healing {
+namespace mr {
 
 /// Parameter t of the projection of p on the line a + t (b - a) (0 for a point segment).
 inline double segment_param(const Point3& p, const Point3& a, const Point3& b) {
@@ -19,4 +19,4 @@ inline double point_segment_distance(const Point3& p, const Point3& a, const Poi
   return vcg::Distance(p, a + (b - a) * t);
 }
 
-}  // namespace mr::healing
+}  // namespace mr
