@@ -474,17 +474,17 @@ def test_bug_fandisk_far_from_the_origin_is_meshed_as_near_it():
     assert all(tuple(c) in kept for c in corners)  # bit for bit
 
 
-@pytest.mark.parametrize("percent,before", [(1.0, 2.33), (2.0, 0.28)])
-def test_crumples_of_a_cad_export_are_dropped_and_its_angles_rise(percent, before):
+@pytest.mark.parametrize("percent,at_least", [(1.0, 15.0), (2.0, 8.0)])
+def test_crumples_of_a_cad_export_are_dropped_and_its_angles_rise(percent, at_least):
     # healing/ALSTOM_TEST4.off has six faces turned over against their neighbours (crumples,
     # found by stage 1 at 0.5-2%). Kept as patches, each was meshed as it stood: the smallest
-    # angle was 2.33 degrees at 1% and 0.28 at 2% (the value of `before`). Dropped: 19.2 and 10.3.
+    # angle was 2.33 degrees at 1% and 0.28 at 2%. Dropped: 19.2 and 10.3 (bounds 15 and 8).
     ms = load("healing/ALSTOM_TEST4.off")
     features = ms.compute_feature_lines_and_patches(min_line_length=pymeshlab.PercentageValue(percent))
     assert features["suppressed_crumples"] >= 1
     res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PercentageValue(percent))
     assert res["unmeshed_sides"] == 0 and res["non_manifold_points"] == 0 and not res["kept_crumples"]
-    assert res["min_angle"] > 2 * before + 5.0
+    assert res["min_angle"] >= at_least
     assert ms.get_topological_measures()["is_mesh_two_manifold"]
 
 
