@@ -76,6 +76,29 @@ Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, con
   return m;
 }
 
+WedgeMeasure measure_wedges(const OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
+                            double bound_deg) {
+  constexpr double kDeg = 180.0 / 3.14159265358979323846;
+  std::unordered_set<std::uint64_t> feature;
+  for (const auto& e : feature_edges) feature.insert(OutputMesh::edge_key(e[0], e[1]));
+  WedgeMeasure w;
+  for (const auto& t : out.faces)
+    for (int z = 0; z < 3; ++z) {
+      const int a = t[z], b = t[(z + 1) % 3], c = t[(z + 2) % 3];
+      const Point3 u = out.points[b] - out.points[a], v = out.points[c] - out.points[a];
+      // A side without length has no angle: 0, as min_angle counts it.
+      const double angle = u.Norm() > 0 && v.Norm() > 0 ? std::atan2((u ^ v).Norm(), u * v) * kDeg : 0.0;
+      const bool tip = angle < bound_deg && feature.count(OutputMesh::edge_key(a, b)) && feature.count(OutputMesh::edge_key(a, c));
+      if (tip) {
+        ++w.wedge_tips;
+        w.min_wedge_angle_deg = std::min(w.min_wedge_angle_deg, angle);
+      } else {
+        w.min_angle_off_wedges_deg = std::min(w.min_angle_off_wedges_deg, angle);
+      }
+    }
+  return w;
+}
+
 int count_missing_edges(const OutputMesh& out, const std::vector<std::array<int, 2>>& edges) {
   std::unordered_set<std::uint64_t> present;
   for (const auto& t : out.faces)

@@ -41,6 +41,10 @@ struct Params {
   std::function<void(int, const char*)> progress;
 };
 
+/// The quality goal (issue #2's and #4's 30 degrees): wedges of feature lines narrower than
+/// this are measured apart (Result::wedge_tips).
+constexpr double kWedgeBoundDeg = 30.0;
+
 struct Result {
   int corners = 0, lines = 0, patches = 0;
   int suppressed_lines = 0;     ///< short dangling lines and loops stage 1 dropped
@@ -72,6 +76,11 @@ struct Result {
   int snapped = 0;              ///< free points moved onto input vertices the output cut off
   int surface_swaps = 0;        ///< edges swapped to follow the input across creases not kept
   double min_angle_deg = 0;     ///< worst triangle angle
+  /// Face corners between two feature edges under kWedgeBoundDeg, one face filling the wedge:
+  /// the lines bound those angles, no regridding that keeps them can do better.
+  int wedge_tips = 0;
+  double min_wedge_angle_deg = 180;       ///< the narrowest wedge tip
+  double min_angle_off_wedges_deg = 0;    ///< worst angle at every other face corner
   double mean_min_angle_deg = 0;  ///< mean over triangles of their smallest angle
   double edges_in_range = 0;    ///< share of edges with length in [0.7,1.4] x local size
   double hausdorff = 0;         ///< two-sided estimate (vertices, edge midpoints, centroids), absolute

@@ -150,6 +150,10 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
   const double ms = double(timer.nsecsElapsed()) * 1e-6;
   log("Advancing front: %d vertices, %d faces, min angle %.2f deg, %d unmeshed front sides (%.1f ms)",
       int(output.vert.size()), int(output.face.size()), r.min_angle_deg, r.unmeshed_sides, ms);
+  if (r.wedge_tips > 0)
+    log("%d face corners lie at the tip of a wedge between two feature lines under %.0f deg (the narrowest "
+        "%.2f deg): no mesh keeping the lines does better there; every other corner is %.2f deg or more",
+        r.wedge_tips, mr::remesh::kWedgeBoundDeg, r.min_wedge_angle_deg, r.min_angle_off_wedges_deg);
   if (r.kept_crumples)
     log("Meshed again keeping the crumpled patches%s: the first meshing left front sides open or points "
         "not manifold",
@@ -174,6 +178,9 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"feature_edges", QVariant(r.feature_edges)},
       {"min_angle", QVariant(r.min_angle_deg)},
       {"mean_min_angle", QVariant(r.mean_min_angle_deg)},
+      {"wedge_tips", QVariant(r.wedge_tips)},
+      {"min_wedge_angle", QVariant(r.min_wedge_angle_deg)},
+      {"min_angle_off_wedges", QVariant(r.min_angle_off_wedges_deg)},
       {"edges_in_range", QVariant(r.edges_in_range)},
       {"hausdorff", QVariant(r.hausdorff)},
       {"hausdorff_rel", QVariant(r.diagonal > 0 ? r.hausdorff / r.diagonal : 0.0)},

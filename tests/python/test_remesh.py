@@ -327,6 +327,37 @@ def test_sliver_cylinder_keeps_two_circular_ridges_and_30_degrees():
     assert point_segment_distance(rim, a, b).max() <= 1e-9
 
 
+def narrow_prism(apex_deg, length=10.0, height=3.0):
+    """A prism over an isosceles triangle with the given apex angle: its top and bottom faces
+    have a corner where two ridges leave at that angle."""
+    h, w = length * np.cos(np.radians(apex_deg / 2)), length * np.sin(np.radians(apex_deg / 2))
+    tri = np.array([[0, 0], [h, w], [h, -w]])
+    v = np.concatenate([np.c_[tri, np.zeros(3)], np.c_[tri, np.full(3, height)]])
+    f = [[0, 2, 1], [3, 4, 5], [0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4], [2, 0, 3], [2, 3, 5]]
+    return pymeshlab.Mesh(v, np.array(f))
+
+
+@pytest.mark.parametrize("apex", [10.0, 20.0])
+def test_wedges_between_ridges_are_measured_apart_from_the_rest(apex):
+    # The apex corners of the top and bottom faces: one face fills each wedge, its angle there is
+    # the apex's (no mesh keeping the ridges can do better). The dictionary says so, and every
+    # other corner is measured on its own: at 5% measured 14.3 (10-degree apex) and 31.4 degrees.
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(narrow_prism(apex))
+    res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PercentageValue(5.0))
+    assert res["unmeshed_sides"] == 0
+    assert res["wedge_tips"] == 2
+    assert res["min_wedge_angle"] == pytest.approx(apex, abs=1e-6)
+    assert res["min_angle_off_wedges"] > apex
+    assert min_angles(ms.current_mesh()).min() == pytest.approx(res["min_angle"], abs=1e-9)
+    assert res["min_angle"] == pytest.approx(min(res["min_wedge_angle"], res["min_angle_off_wedges"]), abs=1e-9)
+    # A wide apex has no wedge tip.
+    ms.add_mesh(narrow_prism(60.0))
+    wide = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PercentageValue(5.0))
+    assert wide["wedge_tips"] == 0 and wide["min_wedge_angle"] == 180.0
+    assert wide["min_angle_off_wedges"] == pytest.approx(wide["min_angle"], abs=1e-9)
+
+
 def test_recovery_modes_on_a_coarse_sphere():
     ms = pymeshlab.MeshSet()
     ms.create_sphere(subdiv=1)  # icosphere of radius 1, 80 faces
