@@ -55,6 +55,9 @@ struct Result {
   int thin_patches = 0;         ///< strips narrower than the elements, given one layer of faces
   int unmeshed_sides = 0;       ///< front sides that could not be closed (0 = complete)
   int unmeshed_patches = 0;     ///< patches with unmeshed sides
+  /// Patches whose front stopped at its step or work bound, closed by the last resort or left
+  /// open (those are in unmeshed_patches too).
+  int bounded_patches = 0;
   /// Feature line segments that are no edge of the output: no hole, the faces closed over
   /// them (the end of a dangling line a hair beside another line or corner).
   int missing_feature_edges = 0;

@@ -186,6 +186,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"hausdorff_rel", QVariant(r.diagonal > 0 ? r.hausdorff / r.diagonal : 0.0)},
       {"unmeshed_sides", QVariant(r.unmeshed_sides)},
       {"unmeshed_patches", QVariant(r.unmeshed_patches)},
+      {"bounded_patches", QVariant(r.bounded_patches)},
       {"missing_feature_edges", QVariant(r.missing_feature_edges)},
       {"flat_pockets_removed", QVariant(r.flat_pockets_removed)},
       {"line_points_removed", QVariant(r.line_points_removed)},
