@@ -5,6 +5,9 @@
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_set>
 
 namespace mr::remesh {
 
@@ -15,6 +18,9 @@ namespace {
 constexpr double kFractions[] = {1.0 / 6, 2.0 / 6, 3.0 / 6, 4.0 / 6, 5.0 / 6};
 // A face around the moved point may turn by at most 60 degrees (it must not fold over).
 constexpr double kMinNormalAgreement = 0.5;
+// Angles closer than this (radians) are taken as equal: a wedge tip's angle changes by rounding
+// when the point beside it slides along a straight line.
+constexpr double kAngleTie = 1e-9;
 
 struct Placement {
   Point3 point;
@@ -32,12 +38,14 @@ Placement at_arc(const LinePath& path, const std::vector<double>& cumulative, do
 
 }  // namespace
 
-std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths, double worse_than_rad) {
+std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths,
+                                   const std::vector<std::array<int, 2>>& feature_edges, double worse_than_rad) {
   const size_t nv = out.points.size();
   const FaceRings rings(nv, out.faces);
   const std::vector<int>&begin = rings.begin, &ring = rings.item;
-
-  auto ring_min_angle = [&](int v) { return star_min_angle(out.points, out.faces, rings, v); };
+  std::unordered_set<std::uint64_t> feature_keys;
+  for (const auto& e : feature_edges) feature_keys.insert(OutputMesh::edge_key(e[0], e[1]));
+  auto ring_angles = [&](int v) { return star_angles(out.points, out.faces, rings, v, feature_keys); };
   std::vector<int> moved;
   std::vector<Point3> old_normal;
   for (LinePath& path : paths) {
@@ -48,8 +56,8 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
     for (size_t i = 1; i + 1 < path.points.size(); ++i) {
       const int v = path.points[i];
       if (!path.slidable[i] || begin[v] == begin[v + 1]) continue;
-      const double before = ring_min_angle(v);
-      if (before >= worse_than_rad) continue;
+      const StarAngles was = ring_angles(v);
+      if (was.smallest() >= worse_than_rad) continue;
       old_normal.clear();
       for (int k = begin[v]; k < begin[v + 1]; ++k) {
         const auto& f = out.faces[ring[k]];
@@ -57,7 +65,9 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
       }
       const Point3 old = out.points[v];
       const double lo = path.arc[i - 1], hi = path.arc[i + 1];
-      double best = before + 1e-9, best_arc = -1;
+      // The smallest angle decides, and where it stays at a wedge tip (between two straight
+      // lines no slide changes it) the smallest off the tips, as long as no tip narrows.
+      double best = was.smallest(), best_off = was.off_wedges, best_arc = -1;
       Placement best_place;
       for (double t : kFractions) {
         const double s = lo + t * (hi - lo);
@@ -69,8 +79,12 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
           folded = unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]) * old_normal[k - begin[v]] <
                    kMinNormalAgreement;
         }
-        const double after = folded ? 0.0 : ring_min_angle(v);
-        if (after > best) { best = after; best_arc = s; best_place = place; }
+        if (folded) continue;
+        const StarAngles now = ring_angles(v);
+        const double off = now.tips >= was.tips - kAngleTie ? now.off_wedges : -1.0;
+        const bool better = now.smallest() > best + kAngleTie ||
+                            (std::abs(now.smallest() - best) <= kAngleTie && off > best_off + kAngleTie);
+        if (better) { best = now.smallest(); best_off = off; best_arc = s; best_place = place; }
       }
       out.points[v] = old;
       if (best_arc < 0) continue;

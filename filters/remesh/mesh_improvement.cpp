@@ -209,7 +209,7 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
   for (int it = 0; it < iterations; ++it) {
     std::vector<int> changed = remove_line_points(out, line_paths, feature_edges, locator, size, kRemoveBelow);
     r.line_points_removed += int(changed.size());
-    const std::vector<int> slid = slide_line_points(out, line_paths, kSlideBelow);
+    const std::vector<int> slid = slide_line_points(out, line_paths, feature_edges, kSlideBelow);
     r.moves += int(slid.size());
     changed.insert(changed.end(), slid.begin(), slid.end());
     if (changed.empty()) break;

@@ -85,10 +85,8 @@ WedgeMeasure measure_wedges(const OutputMesh& out, const std::vector<std::array<
   for (const auto& t : out.faces)
     for (int z = 0; z < 3; ++z) {
       const int a = t[z], b = t[(z + 1) % 3], c = t[(z + 2) % 3];
-      const Point3 u = out.points[b] - out.points[a], v = out.points[c] - out.points[a];
-      // A side without length has no angle: 0, as min_angle counts it.
-      const double angle = u.Norm() > 0 && v.Norm() > 0 ? std::atan2((u ^ v).Norm(), u * v) * kDeg : 0.0;
-      const bool tip = angle < bound_deg && feature.count(OutputMesh::edge_key(a, b)) && feature.count(OutputMesh::edge_key(a, c));
+      const double angle = corner_angle(out.points[a], out.points[b], out.points[c]) * kDeg;
+      const bool tip = angle < bound_deg && is_wedge_tip(0.0, a, b, c, feature);
       if (tip) {
         ++w.wedge_tips;
         w.min_wedge_angle_deg = std::min(w.min_wedge_angle_deg, angle);

@@ -4,6 +4,7 @@
 #include "remesh/output_mesh.h"
 #include "remesh/size_field.h"
 #include "remesh/surface_locator.h"
+#include "remesh/wedge_tips.h"
 
 namespace mr::remesh {
 

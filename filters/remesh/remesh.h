@@ -6,6 +6,7 @@
 #pragma once
 
 #include "common/tri_mesh.h"
+#include "remesh/wedge_tips.h"
 
 #include <array>
 #include <functional>
@@ -40,10 +41,6 @@ struct Params {
   /// Progress in percent with a message; may be empty.
   std::function<void(int, const char*)> progress;
 };
-
-/// The quality goal (issue #2's and #4's 30 degrees): wedges of feature lines narrower than
-/// this are measured apart (Result::wedge_tips).
-constexpr double kWedgeBoundDeg = 30.0;
 
 struct Result {
   int corners = 0, lines = 0, patches = 0;

@@ -6,13 +6,7 @@
 namespace mr::remesh {
 
 double min_angle(const Point3& a, const Point3& b, const Point3& c) {
-  auto angle = [](const Point3& o, const Point3& p, const Point3& q) {
-    Point3 u = p - o, v = q - o;
-    const double nu = u.Norm(), nv = v.Norm();
-    if (nu == 0 || nv == 0) return 0.0;
-    return std::atan2((u ^ v).Norm(), u * v);
-  };
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+  return std::min({corner_angle(a, b, c), corner_angle(b, c, a), corner_angle(c, a, b)});
 }
 
 Point3 unit_normal(const Point3& a, const Point3& b, const Point3& c) {

@@ -12,6 +12,13 @@ namespace mr::remesh {
 
 using mr::closest_point_on_triangle;
 
+/// Angle (radians) at o of the corner o, p, q (0 when a side has no length).
+inline double corner_angle(const Point3& o, const Point3& p, const Point3& q) {
+  const Point3 u = p - o, v = q - o;
+  if (u.Norm() == 0 || v.Norm() == 0) return 0.0;
+  return std::atan2((u ^ v).Norm(), u * v);
+}
+
 /// Smallest interior angle of triangle (a,b,c) in radians (0 for a degenerate one).
 double min_angle(const Point3& a, const Point3& b, const Point3& c);
 

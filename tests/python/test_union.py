@@ -470,9 +470,10 @@ def test_pipeline_regrid_of_rabbit_obj_removes_line_points_that_pinch_thin_faces
     assert regrid["unmeshed_sides"] == 0
     assert angles(ms.current_mesh()).min() >= 12.0
     assert regrid["line_points_removed"] >= 1
-    # The 12.29 degrees are a wedge tip; off the wedges measured 21.7 (1%) and 18.7 (2%).
+    # The 12.29 degrees are a wedge tip. Off the wedges measured 26.2 (1%) and 18.7 (2%); 21.7 at
+    # 1% while the tip's fixed angle held the line points beside it from sliding.
     assert regrid["wedge_tips"] >= 1 and regrid["min_wedge_angle"] == pytest.approx(12.29, abs=0.01)
-    assert regrid["min_angle_off_wedges"] >= 15.0
+    assert regrid["min_angle_off_wedges"] >= {1.0: 25.0, 2.0: 15.0}[target_percent]
     topo = ms.get_topological_measures()
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 

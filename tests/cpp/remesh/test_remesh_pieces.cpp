@@ -297,7 +297,8 @@ TEST(RemeshPieces, PinchedPointHasTwoFansAndRemovingAPatchKeepsTheOthers) {
 TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
   // Two lines leave a corner 19.3 degrees apart with points at 1 and 2 on both: the face between
   // the first pair and the next point of line A has 17.4 degrees. The first point of line B
-  // slides along B (here straight) until no face of its ring is below the tip's 19.3 degrees.
+  // slides along B (here straight) until no face of its ring is below the tip's 19.3 degrees,
+  // and where the tip is the smallest, which no slide changes, the faces beyond it decide.
   const double alpha = 19.3 * 3.14159265358979323846 / 180.0;
   const Point3 dir_b(std::cos(alpha), std::sin(alpha), 0);
   OutputMesh out;
@@ -320,9 +321,37 @@ TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
     for (const auto& f : out.faces) w = std::min(w, min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
     return w * 180.0 / 3.14159265358979323846;
   };
+  auto worst_beyond_tip = [&] {
+    double w = 1e9;
+    for (size_t f = 1; f < out.faces.size(); ++f) w = std::min(w, min_angle(out.points, out.faces[f]));
+    return w * 180.0 / 3.14159265358979323846;
+  };
+  const std::vector<std::array<int, 2>> lines{{c, a1}, {a1, a2}, {c, b1}, {b1, b2}};
   EXPECT_NEAR(worst(), 17.4, 0.1);
-  EXPECT_EQ(slide_line_points(out, paths, 30.0 * 3.14159265358979323846 / 180.0).size(), 1u);
-  EXPECT_GE(worst(), 19.3 - 1e-6);
+  {
+    // With the first point of B at 1.15 the faces beyond the tip have 22.6 degrees and the tip's
+    // 19.3 is the ring's smallest. Not told the lines (as before stop 41), no slide can raise
+    // that, and nothing moves; told them, the point slides and the faces beyond pass 30.
+    OutputMesh at_115 = out;
+    at_115.points[b1] = dir_b * 1.15;
+    std::vector<LinePath> paths_115 = paths;
+    paths_115[0].arc[1] = 1.15;
+    OutputMesh unaware = at_115;
+    std::vector<LinePath> unaware_paths = paths_115;
+    auto beyond = [](const OutputMesh& m) {
+      double w = 1e9;
+      for (size_t f = 1; f < m.faces.size(); ++f) w = std::min(w, min_angle(m.points, m.faces[f]));
+      return w * 180.0 / 3.14159265358979323846;
+    };
+    EXPECT_NEAR(beyond(at_115), 22.57, 0.01);
+    EXPECT_TRUE(slide_line_points(unaware, unaware_paths, {}, 30.0 * 3.14159265358979323846 / 180.0).empty());
+    EXPECT_EQ(slide_line_points(at_115, paths_115, lines, 30.0 * 3.14159265358979323846 / 180.0).size(), 1u);
+    EXPECT_GE(beyond(at_115), 30.0);
+    EXPECT_NEAR(min_angle(at_115.points, at_115.faces[0]) * 180.0 / 3.14159265358979323846, 19.3, 1e-9);
+  }
+  EXPECT_EQ(slide_line_points(out, paths, lines, 30.0 * 3.14159265358979323846 / 180.0).size(), 1u);
+  EXPECT_NEAR(worst(), 19.3, 1e-6);  // the tip
+  EXPECT_GE(worst_beyond_tip(), 30.0);  // measured 30.7
   EXPECT_NEAR((out.points[b1] ^ dir_b).Norm(), 0.0, 1e-12);  // still on line B
   EXPECT_NEAR(out.points[b1].Norm(), paths[0].arc[1], 1e-12);
   EXPECT_GT(paths[0].arc[1], 1.0);
@@ -330,7 +359,7 @@ TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
   EXPECT_EQ(out.host[b1], 6);
   EXPECT_EQ(out.points[a1], Point3(1, 0, 0));  // line A's points were not in the path: they stay
   // Nothing below the threshold: nothing moves.
-  EXPECT_TRUE(slide_line_points(out, paths, 5.0 * 3.14159265358979323846 / 180.0).empty());
+  EXPECT_TRUE(slide_line_points(out, paths, lines, 5.0 * 3.14159265358979323846 / 180.0).empty());
 }
 
 TEST(RemeshPieces, StripLineTakesThePointsAcrossShiftedAlongTheOtherSide) {
