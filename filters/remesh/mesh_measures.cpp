@@ -76,8 +76,7 @@ Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, con
   return m;
 }
 
-WedgeMeasure measure_wedges(const OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
-                            double bound_deg) {
+WedgeMeasure measure_wedges(const OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges) {
   constexpr double kDeg = 180.0 / 3.14159265358979323846;
   std::unordered_set<std::uint64_t> feature;
   for (const auto& e : feature_edges) feature.insert(OutputMesh::edge_key(e[0], e[1]));
@@ -85,9 +84,9 @@ WedgeMeasure measure_wedges(const OutputMesh& out, const std::vector<std::array<
   for (const auto& t : out.faces)
     for (int z = 0; z < 3; ++z) {
       const int a = t[z], b = t[(z + 1) % 3], c = t[(z + 2) % 3];
-      const double angle = corner_angle(out.points[a], out.points[b], out.points[c]) * kDeg;
-      const bool tip = angle < bound_deg && is_wedge_tip(0.0, a, b, c, feature);
-      if (tip) {
+      const double radians = corner_angle(out.points[a], out.points[b], out.points[c]);
+      const double angle = radians * kDeg;
+      if (is_wedge_tip(radians, a, b, c, feature)) {
         ++w.wedge_tips;
         w.min_wedge_angle_deg = std::min(w.min_wedge_angle_deg, angle);
       } else {

@@ -27,18 +27,16 @@ double size_at_point(const OutputMesh& out, const SurfaceLocator& locator, const
 int count_pinched_points(const OutputMesh& out);
 
 /// Angles the feature lines themselves bound: where two feature edges leave a point at an
-/// angle under `bound_deg` and one face fills the wedge between them, no mesh that keeps the
-/// lines can give that corner more than the wedge's own angle.
+/// angle under kWedgeBoundDeg and one face fills the wedge between them, no mesh that keeps the
+/// lines can give that corner more than the wedge's own angle (wedge_tips.h).
 struct WedgeMeasure {
   int wedge_tips = 0;                 ///< such face corners
   double min_wedge_angle_deg = 180;   ///< the narrowest of them
   double min_angle_off_wedges_deg = 180;  ///< the smallest face angle at every other corner
 };
 
-/// The corners of `out`'s faces split into wedge tips (both sides at the corner are among
-/// `feature_edges`, the angle under `bound_deg`) and the rest.
-WedgeMeasure measure_wedges(const OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
-                            double bound_deg);
+/// The corners of `out`'s faces split into wedge tips between `feature_edges` and the rest.
+WedgeMeasure measure_wedges(const OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges);
 
 /// How many of `edges` (feature line segments) are no edge of any face of `out`.
 int count_missing_edges(const OutputMesh& out, const std::vector<std::array<int, 2>>& edges);

@@ -371,7 +371,7 @@ Result remesh_once(const TriMesh& given, const Params& params, SliverChoice choi
   result.missing_feature_edges = count_missing_edges(out, feature_edges);
   result.non_manifold_points = count_pinched_points(out);
   result.min_angle_deg = m.min_angle_deg;
-  const WedgeMeasure wm = measure_wedges(out, feature_edges, kWedgeBoundDeg);
+  const WedgeMeasure wm = measure_wedges(out, feature_edges);
   result.wedge_tips = wm.wedge_tips;
   result.min_wedge_angle_deg = wm.min_wedge_angle_deg;
   result.min_angle_off_wedges_deg = wm.min_angle_off_wedges_deg;

@@ -5,6 +5,8 @@
 // wedge tip could otherwise never slide: its star's smallest angle is the tip's, fixed).
 #pragma once
 
+#include "remesh/output_mesh.h"
+
 #include <cstdint>
 #include <unordered_set>
 
@@ -15,13 +17,10 @@ constexpr double kWedgeBoundDeg = 30.0;
 constexpr double kWedgeBoundRad = kWedgeBoundDeg * 3.14159265358979323846 / 180.0;
 
 /// Corner `at` of a face, with the face's other corners `b` and `c`, `angle` radians there, is a
-/// wedge tip. `feature_keys`: undirected edge keys (min << 32 | max) of the feature edges.
+/// wedge tip. `feature_keys`: the feature edges' OutputMesh::edge_key.
 inline bool is_wedge_tip(double angle, int at, int b, int c, const std::unordered_set<std::uint64_t>& feature_keys) {
-  auto key = [](int x, int y) {
-    if (x > y) std::swap(x, y);
-    return (std::uint64_t(std::uint32_t(x)) << 32) | std::uint32_t(y);
-  };
-  return angle < kWedgeBoundRad && feature_keys.count(key(at, b)) && feature_keys.count(key(at, c));
+  return angle < kWedgeBoundRad && feature_keys.count(OutputMesh::edge_key(at, b)) &&
+         feature_keys.count(OutputMesh::edge_key(at, c));
 }
 
 }  // namespace mr::remesh
