@@ -50,8 +50,7 @@ struct PairProbe {
 
 int swap_towards_surface(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges,
                          const SurfaceLocator& locator, const SizeField& size, const DeviationSwapParams& params) {
-  std::unordered_set<std::uint64_t> fixed;
-  for (const auto& e : feature_edges) fixed.insert(SideFaces::undirected(e[0], e[1]));
+  const std::unordered_set<std::uint64_t> fixed = OutputMesh::edge_key_set(feature_edges);
   const double floor = params.min_angle_deg * 3.14159265358979323846 / 180.0;
   SideFaces sides(out.faces);
 

@@ -24,9 +24,7 @@ class LinePointRemoval {
 public:
   LinePointRemoval(OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges, const SurfaceLocator& locator,
                    const SizeField& size)
-      : out_(out), locator_(locator), size_(size), stars_(out) {
-    for (const auto& e : feature_edges) feature_.insert(OutputMesh::edge_key(e[0], e[1]));
-  }
+      : out_(out), locator_(locator), size_(size), stars_(out), feature_(OutputMesh::edge_key_set(feature_edges)) {}
 
   /// Removes the path's points that qualify, in order along it.
   void run(LinePath& path, double worse_than) {

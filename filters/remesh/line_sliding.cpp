@@ -43,8 +43,7 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
   const size_t nv = out.points.size();
   const FaceRings rings(nv, out.faces);
   const std::vector<int>&begin = rings.begin, &ring = rings.item;
-  std::unordered_set<std::uint64_t> feature_keys;
-  for (const auto& e : feature_edges) feature_keys.insert(OutputMesh::edge_key(e[0], e[1]));
+  const std::unordered_set<std::uint64_t> feature_keys = OutputMesh::edge_key_set(feature_edges);
   auto ring_angles = [&](int v) { return star_angles(out.points, out.faces, rings, v, feature_keys); };
   std::vector<int> moved;
   std::vector<Point3> old_normal;

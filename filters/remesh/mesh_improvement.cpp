@@ -152,12 +152,6 @@ int smooth_pass(OutputMesh& out, const SurfaceLocator& locator, const std::vecto
   return moves;
 }
 
-std::unordered_set<std::uint64_t> feature_key_set(const std::vector<std::array<int, 2>>& feature_edges) {
-  std::unordered_set<std::uint64_t> keys;
-  for (const auto& e : feature_edges) keys.insert(undirected(e[0], e[1]));
-  return keys;
-}
-
 // Points within two edges of `moved` (all points when it is empty).
 std::vector<char> region_around(const OutputMesh& out, const std::vector<int>& moved) {
   std::vector<char> region(out.points.size(), moved.empty() ? 1 : 0);
@@ -179,7 +173,7 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
   std::vector<char> region = region_around(out, moved);
   std::vector<char> movable(region);
   for (int v : moved) movable[v] = 0;
-  std::unordered_set<std::uint64_t> fixed = feature_key_set(feature_edges);
+  std::unordered_set<std::uint64_t> fixed = OutputMesh::edge_key_set(feature_edges);
   ImprovementResult r;
   double worst = kValenceFloor;
   for (const auto& f : out.faces) worst = std::min(worst, min_angle(out.points, f));

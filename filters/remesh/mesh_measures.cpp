@@ -78,8 +78,7 @@ Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, con
 
 WedgeMeasure measure_wedges(const OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges) {
   constexpr double kDeg = 180.0 / 3.14159265358979323846;
-  std::unordered_set<std::uint64_t> feature;
-  for (const auto& e : feature_edges) feature.insert(OutputMesh::edge_key(e[0], e[1]));
+  const std::unordered_set<std::uint64_t> feature = OutputMesh::edge_key_set(feature_edges);
   WedgeMeasure w;
   for (const auto& t : out.faces)
     for (int z = 0; z < 3; ++z) {

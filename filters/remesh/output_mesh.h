@@ -39,6 +39,12 @@ struct OutputMesh {
     if (a > b) std::swap(a, b);
     return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
   }
+  /// The edge_key of each of `edges` (feature line segments), for lookups.
+  static std::unordered_set<std::uint64_t> edge_key_set(const std::vector<std::array<int, 2>>& edges) {
+    std::unordered_set<std::uint64_t> keys;
+    for (const auto& e : edges) keys.insert(edge_key(e[0], e[1]));
+    return keys;
+  }
   static std::array<int, 3> triangle_key(int a, int b, int c) {
     std::array<int, 3> t{a, b, c};
     std::sort(t.begin(), t.end());
