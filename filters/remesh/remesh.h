@@ -6,7 +6,6 @@
 #pragma once
 
 #include "common/tri_mesh.h"
-#include "remesh/wedge_tips.h"
 
 #include <array>
 #include <functional>
@@ -76,8 +75,8 @@ struct Result {
   int snapped = 0;              ///< free points moved onto input vertices the output cut off
   int surface_swaps = 0;        ///< edges swapped to follow the input across creases not kept
   double min_angle_deg = 0;     ///< worst triangle angle
-  /// Face corners between two feature edges under kWedgeBoundDeg, one face filling the wedge:
-  /// the lines bound those angles, no regridding that keeps them can do better.
+  /// Face corners between two feature edges under kWedgeBoundDeg (wedge_tips.h), one face
+  /// filling the wedge: the lines bound those angles, no regridding that keeps them can do better.
   int wedge_tips = 0;
   double min_wedge_angle_deg = 180;       ///< the narrowest wedge tip
   double min_angle_off_wedges_deg = 0;    ///< worst angle at every other face corner

@@ -3,6 +3,7 @@
 #include "common/error_translation.h"
 #include "common/mesh_bridge.h"
 #include "remesh/remesh.h"
+#include "remesh/wedge_tips.h"
 
 #include <QElapsedTimer>
 
