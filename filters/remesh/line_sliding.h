@@ -24,12 +24,14 @@ struct LinePath {
 };
 
 /// Moves line points along their lines where that raises the smallest angle of their faces
-/// below `worse_than_rad` (the rest are left alone: the lines keep their even spacing);
-/// `paths` follow the moves. Returns the points that moved, in the order they moved.
+/// below `worse_than_rad`, and where it lifts a smallest angle below `goal_rad` to at least
+/// `goal_rad` (the rest are left alone: the lines keep their even spacing); `paths` follow
+/// the moves. Returns the points that moved, in the order they moved.
 /// Where the smallest angle around the point is a wedge tip's between `feature_edges`
 /// (wedge_tips.h), which no slide along a straight line changes, the smallest angle off the tips
 /// decides, or no point beside a tip would move.
 std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths,
-                                   const std::vector<std::array<int, 2>>& feature_edges, double worse_than_rad);
+                                   const std::vector<std::array<int, 2>>& feature_edges, double worse_than_rad,
+                                   double goal_rad);
 
 }  // namespace mr::remesh

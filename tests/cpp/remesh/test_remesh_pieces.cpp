@@ -344,12 +344,23 @@ TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
       return w * 180.0 / 3.14159265358979323846;
     };
     EXPECT_NEAR(beyond(at_115), 22.57, 0.01);
-    EXPECT_TRUE(slide_line_points(unaware, unaware_paths, {}, 30.0 * 3.14159265358979323846 / 180.0).empty());
-    EXPECT_EQ(slide_line_points(at_115, paths_115, lines, 30.0 * 3.14159265358979323846 / 180.0).size(), 1u);
+    EXPECT_TRUE(slide_line_points(unaware, unaware_paths, {}, 30.0 * 3.14159265358979323846 / 180.0, 0.0).empty());
+    EXPECT_EQ(slide_line_points(at_115, paths_115, lines, 30.0 * 3.14159265358979323846 / 180.0, 0.0).size(), 1u);
     EXPECT_GE(beyond(at_115), 30.0);
     EXPECT_NEAR(min_angle(at_115.points, at_115.faces[0]) * 180.0 / 3.14159265358979323846, 19.3, 1e-9);
   }
-  EXPECT_EQ(slide_line_points(out, paths, lines, 30.0 * 3.14159265358979323846 / 180.0).size(), 1u);
+  {
+    // Between the two bounds (15 and 20 degrees here: the ring's 17.4 lies between them) a slide
+    // must reach the goal. The tip's 19.3 stays the ring's smallest wherever the point goes, so
+    // no place reaches 20 and nothing moves; a goal of 19 is reached.
+    const double deg = 3.14159265358979323846 / 180.0;
+    OutputMesh copy = out;
+    std::vector<LinePath> copy_paths = paths;
+    EXPECT_TRUE(slide_line_points(copy, copy_paths, lines, 15.0 * deg, 20.0 * deg).empty());
+    EXPECT_EQ(copy.points[b1], out.points[b1]);
+    EXPECT_EQ(slide_line_points(copy, copy_paths, lines, 15.0 * deg, 19.0 * deg).size(), 1u);
+  }
+  EXPECT_EQ(slide_line_points(out, paths, lines, 30.0 * 3.14159265358979323846 / 180.0, 0.0).size(), 1u);
   EXPECT_NEAR(worst(), 19.3, 1e-6);  // the tip
   EXPECT_GE(worst_beyond_tip(), 30.0);  // measured 30.7
   EXPECT_NEAR((out.points[b1] ^ dir_b).Norm(), 0.0, 1e-12);  // still on line B
@@ -359,7 +370,7 @@ TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
   EXPECT_EQ(out.host[b1], 6);
   EXPECT_EQ(out.points[a1], Point3(1, 0, 0));  // line A's points were not in the path: they stay
   // Nothing below the threshold: nothing moves.
-  EXPECT_TRUE(slide_line_points(out, paths, lines, 5.0 * 3.14159265358979323846 / 180.0).empty());
+  EXPECT_TRUE(slide_line_points(out, paths, lines, 5.0 * 3.14159265358979323846 / 180.0, 0.0).empty());
 }
 
 TEST(RemeshPieces, StripLineTakesThePointsAcrossShiftedAlongTheOtherSide) {
