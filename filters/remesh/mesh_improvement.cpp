@@ -1,4 +1,5 @@
 #include "remesh/mesh_improvement.h"
+#include "remesh/angle_smoothing.h"
 
 #include "remesh/defect_reduction.h"
 #include "remesh/face_rings.h"
@@ -213,6 +214,13 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
     std::vector<char> near_changed = region_around(out, changed);
     for (size_t v = 0; v < near_changed.size(); ++v) near_changed[v] = near_changed[v] && movable[v];
     r.moves += smooth_pass(out, locator, near_changed);
+  }
+  // Last, free points whose faces stay under the goal (pinched between feature points, where
+  // the ring's centre does not help) search nearby for better places.
+  for (int it = 0; it < iterations; ++it) {
+    const int raised = raise_pinched_free_points(out, locator, movable, kSlideGoal);
+    r.moves += raised;
+    if (raised == 0) break;
   }
   return r;
 }

@@ -470,11 +470,12 @@ def test_pipeline_regrid_of_rabbit_obj_removes_line_points_that_pinch_thin_faces
     assert regrid["unmeshed_sides"] == 0
     assert angles(ms.current_mesh()).min() >= 12.0
     assert regrid["line_points_removed"] >= 1
-    # The 12.29 degrees are a wedge tip. Off the wedges measured 28.89 (1%) and 24.14 (2%) since
-    # line points whose ring is under 30 degrees slide where that reaches 30 (26.2 and 18.7
-    # before; 21.7 at 1% while the tip's fixed angle held the line points beside it).
+    # The 12.29 degrees are a wedge tip. Off the wedges measured 30.30 (1%) and 24.32 (2%) since
+    # line points whose ring is under 30 degrees slide where that reaches 30 and pinched free
+    # points search for better places (26.2 and 18.7 before; 28.89 and 24.14 with the slides
+    # alone; 21.7 at 1% while the tip's fixed angle held the line points beside it).
     assert regrid["wedge_tips"] >= 1 and regrid["min_wedge_angle"] == pytest.approx(12.29, abs=0.01)
-    assert regrid["min_angle_off_wedges"] >= {1.0: 28.5, 2.0: 23.5}[target_percent]
+    assert regrid["min_angle_off_wedges"] >= {1.0: 30.0, 2.0: 24.0}[target_percent]
     topo = ms.get_topological_measures()
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 

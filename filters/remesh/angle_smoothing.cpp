@@ -1,0 +1,89 @@
+#include "remesh/angle_smoothing.h"
+
+#include "remesh/face_rings.h"
+#include "remesh/star_shape.h"
+#include "remesh/triangle_geometry.h"
+
+#include <array>
+#include <cmath>
+
+namespace mr::remesh {
+
+namespace {
+
+// The search starts with steps of a quarter of the ring's mean edge and stops below a
+// hundredth of it; a place farther than half an edge from the start is not taken (the point
+// would leave its ring's middle, and its faces their shapes for the others).
+constexpr double kFirstStep = 0.25, kLastStep = 0.01, kReach = 0.5;
+constexpr int kMaxSteps = 60;
+
+struct Basis {
+  Point3 u, w;
+};
+
+Basis tangent_basis(const Point3& n) {
+  const Point3 axis = std::fabs(n[0]) < 0.9 ? Point3(1, 0, 0) : Point3(0, 1, 0);
+  Point3 u = n ^ axis;
+  u.Normalize();
+  return {u, n ^ u};
+}
+
+}  // namespace
+
+int raise_pinched_free_points(OutputMesh& out, const SurfaceLocator& locator, const std::vector<char>& movable,
+                              double goal_rad) {
+  const size_t nv = out.points.size();
+  const FaceRings rings(nv, out.faces);
+  const Surface& s = locator.surface();
+  int moves = 0;
+  for (size_t i = 0; i < nv; ++i) {
+    const int v = int(i);
+    if (i >= movable.size() || out.kind[v] != PointKind::Free || !movable[v] || rings.begin[v] == rings.begin[v + 1] ||
+        out.host[v] < 0)
+      continue;
+    const double before = star_min_angle(out.points, out.faces, rings, v);
+    if (before >= goal_rad) continue;
+    const int patch = out.face_patch[rings.item[rings.begin[v]]];
+    double edge = 0;
+    int count = 0;
+    for (int k = rings.begin[v]; k < rings.begin[v + 1]; ++k)
+      for (int x : out.faces[rings.item[k]])
+        if (x != v) { edge += (out.points[x] - out.points[v]).Norm(); ++count; }
+    edge /= count;
+    const Point3 start = out.points[v];
+    Point3 at = start;
+    int host = out.host[v];
+    double best = before;
+    double step = kFirstStep * edge;
+    for (int n = 0; n < kMaxSteps && step >= kLastStep * edge; ++n) {
+      const Point3 normal = s.face_normal[host];
+      const Basis b = tangent_basis(normal);
+      const std::array<Point3, 8> directions{b.u, -b.u, b.w, -b.w, (b.u + b.w) * M_SQRT1_2, (b.u - b.w) * M_SQRT1_2,
+                                             (b.w - b.u) * M_SQRT1_2, (b.u + b.w) * -M_SQRT1_2};
+      Point3 next = at;
+      int next_host = host;
+      double next_best = best;
+      for (const Point3& d : directions) {
+        const Projection pr =
+            locator.locate(at + d * step, patch, normal, host, 2 * step + locator.rounding_length());
+        if (pr.face < 0 || (pr.point - start).Norm() > kReach * edge) continue;
+        out.points[v] = pr.point;
+        if (star_folded(out.points, out.faces, rings, v, s.face_normal[pr.face])) continue;
+        const double a = star_min_angle(out.points, out.faces, rings, v);
+        if (a > next_best + 1e-12) { next_best = a; next = pr.point; next_host = pr.face; }
+      }
+      if (next_best > best) { best = next_best; at = next; host = next_host; }
+      else step *= 0.5;
+    }
+    if (best > before + 1e-9) {
+      out.points[v] = at;
+      out.host[v] = host;
+      ++moves;
+    } else {
+      out.points[v] = start;
+    }
+  }
+  return moves;
+}
+
+}  // namespace mr::remesh
