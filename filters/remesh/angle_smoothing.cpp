@@ -5,7 +5,6 @@
 #include "remesh/triangle_geometry.h"
 
 #include <array>
-#include <cmath>
 
 namespace mr::remesh {
 
@@ -16,26 +15,16 @@ namespace {
 // would leave its ring's middle, and its faces their shapes for the others).
 constexpr double kFirstStep = 0.25, kLastStep = 0.01, kReach = 0.5;
 constexpr int kMaxSteps = 60;
-
-struct Basis {
-  Point3 u, w;
-};
-
-Basis tangent_basis(const Point3& n) {
-  const Point3 axis = std::fabs(n[0]) < 0.9 ? Point3(1, 0, 0) : Point3(0, 1, 0);
-  Point3 u = n ^ axis;
-  u.Normalize();
-  return {u, n ^ u};
-}
+constexpr double kDiagonal = 0.70710678118654752440;  // 1 / sqrt(2)
 
 }  // namespace
 
-int raise_pinched_free_points(OutputMesh& out, const SurfaceLocator& locator, const std::vector<char>& movable,
-                              double goal_rad) {
+std::vector<int> raise_pinched_free_points(OutputMesh& out, const SurfaceLocator& locator,
+                                           const std::vector<char>& movable, double goal_rad) {
   const size_t nv = out.points.size();
   const FaceRings rings(nv, out.faces);
   const Surface& s = locator.surface();
-  int moves = 0;
+  std::vector<int> moved;
   for (size_t i = 0; i < nv; ++i) {
     const int v = int(i);
     if (i >= movable.size() || out.kind[v] != PointKind::Free || !movable[v] || rings.begin[v] == rings.begin[v + 1] ||
@@ -44,6 +33,8 @@ int raise_pinched_free_points(OutputMesh& out, const SurfaceLocator& locator, co
     const double before = star_min_angle(out.points, out.faces, rings, v);
     if (before >= goal_rad) continue;
     const int patch = out.face_patch[rings.item[rings.begin[v]]];
+    const auto& first_face = out.faces[rings.item[rings.begin[v]]];
+    const int neighbour = first_face[0] != v ? first_face[0] : first_face[1];  // fixes the frame's e1
     double edge = 0;
     int count = 0;
     for (int k = rings.begin[v]; k < rings.begin[v + 1]; ++k)
@@ -57,9 +48,10 @@ int raise_pinched_free_points(OutputMesh& out, const SurfaceLocator& locator, co
     double step = kFirstStep * edge;
     for (int n = 0; n < kMaxSteps && step >= kLastStep * edge; ++n) {
       const Point3 normal = s.face_normal[host];
-      const Basis b = tangent_basis(normal);
-      const std::array<Point3, 8> directions{b.u, -b.u, b.w, -b.w, (b.u + b.w) * M_SQRT1_2, (b.u - b.w) * M_SQRT1_2,
-                                             (b.w - b.u) * M_SQRT1_2, (b.u + b.w) * -M_SQRT1_2};
+      const TangentFrame f(at, out.points[neighbour] - at, normal);
+      const std::array<Point3, 8> directions{f.e1, -f.e1, f.e2, -f.e2, (f.e1 + f.e2) * kDiagonal,
+                                             (f.e1 - f.e2) * kDiagonal, (f.e2 - f.e1) * kDiagonal,
+                                             (f.e1 + f.e2) * -kDiagonal};
       Point3 next = at;
       int next_host = host;
       double next_best = best;
@@ -78,12 +70,12 @@ int raise_pinched_free_points(OutputMesh& out, const SurfaceLocator& locator, co
     if (best > before + 1e-9) {
       out.points[v] = at;
       out.host[v] = host;
-      ++moves;
+      moved.push_back(v);
     } else {
       out.points[v] = start;
     }
   }
-  return moves;
+  return moved;
 }
 
 }  // namespace mr::remesh

@@ -16,8 +16,8 @@ namespace mr::remesh {
 /// place nearby on the input (in its patch) where that angle is largest: a compass search in
 /// the point's tangent plane, every place projected onto the input. A move is kept only if it
 /// raises the smallest angle and folds no face, so the mesh's minimum angle never drops.
-/// Returns the number of points moved.
-int raise_pinched_free_points(OutputMesh& out, const SurfaceLocator& locator, const std::vector<char>& movable,
-                              double goal_rad);
+/// Returns the points moved, in the order they moved.
+std::vector<int> raise_pinched_free_points(OutputMesh& out, const SurfaceLocator& locator,
+                                           const std::vector<char>& movable, double goal_rad);
 
 }  // namespace mr::remesh

@@ -1,6 +1,6 @@
 #include "remesh/mesh_improvement.h"
-#include "remesh/angle_smoothing.h"
 
+#include "remesh/angle_smoothing.h"
 #include "remesh/defect_reduction.h"
 #include "remesh/face_rings.h"
 #include "remesh/length_equalisation.h"
@@ -216,11 +216,15 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
     r.moves += smooth_pass(out, locator, near_changed);
   }
   // Last, free points whose faces stay under the goal (pinched between feature points, where
-  // the ring's centre does not help) search nearby for better places.
+  // the ring's centre does not help) search nearby for better places; after the first sweep only
+  // points near one that moved (the others' faces are as the last search left them).
+  std::vector<char> searched = movable;
   for (int it = 0; it < iterations; ++it) {
-    const int raised = raise_pinched_free_points(out, locator, movable, kSlideGoal);
-    r.moves += raised;
-    if (raised == 0) break;
+    const std::vector<int> raised = raise_pinched_free_points(out, locator, searched, kSlideGoal);
+    r.moves += int(raised.size());
+    if (raised.empty()) break;
+    searched = region_around(out, raised);
+    for (size_t v = 0; v < searched.size(); ++v) searched[v] = searched[v] && v < movable.size() && movable[v];
   }
   return r;
 }

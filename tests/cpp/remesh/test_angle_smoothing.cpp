@@ -40,7 +40,7 @@ TEST(RemeshAngleSmoothing, PinchedFreePointMovesToWhereItsFacesPassTheGoal) {
   ASSERT_NEAR(star_min(out, v) / kDeg, 10.01, 0.01);
   std::vector<char> movable(out.points.size(), 0);  // (its free neighbours, pinched too, stay)
   movable[size_t(v)] = 1;
-  EXPECT_EQ(raise_pinched_free_points(out, sq.locator, movable, 30 * kDeg), 1);
+  EXPECT_EQ(raise_pinched_free_points(out, sq.locator, movable, 30 * kDeg), std::vector<int>{v});
   EXPECT_GE(star_min(out, v), 30 * kDeg);
   EXPECT_GE(test::worst_angle(out), test::worst_angle(before));
   EXPECT_NEAR(out.points[v][2], 0.0, 1e-12);  // on the input
@@ -56,13 +56,13 @@ TEST(RemeshAngleSmoothing, PointsNotMovableOrAtTheGoalStay) {
   OutputMesh out = pinched_lattice(sq.locator, v);
   const OutputMesh before = out;
   std::vector<char> movable(out.points.size(), 0);
-  EXPECT_EQ(raise_pinched_free_points(out, sq.locator, movable, 30 * kDeg), 0);
+  EXPECT_TRUE(raise_pinched_free_points(out, sq.locator, movable, 30 * kDeg).empty());
   // Movable, but its 10.01 degrees are above a goal of 9: nothing to raise.
   movable[size_t(v)] = 1;
-  EXPECT_EQ(raise_pinched_free_points(out, sq.locator, movable, 9 * kDeg), 0);
+  EXPECT_TRUE(raise_pinched_free_points(out, sq.locator, movable, 9 * kDeg).empty());
   // The untouched lattice (45 degrees everywhere) has nothing under 30.
   OutputMesh plain = test::unit_lattice(sq.locator);
   movable.assign(out.points.size(), 1);
-  EXPECT_EQ(raise_pinched_free_points(plain, sq.locator, movable, 30 * kDeg), 0);
+  EXPECT_TRUE(raise_pinched_free_points(plain, sq.locator, movable, 30 * kDeg).empty());
   for (size_t x = 0; x < out.points.size(); ++x) EXPECT_EQ(out.points[x], before.points[x]);
 }
