@@ -198,6 +198,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"local_repairs", QVariant(r.local_repairs)},
       {"merged_lines", QVariant(r.merged_lines)},
       {"thin_patches", QVariant(r.thin_patches)},
+      {"thin_step_faces", QVariant(r.thin_step_faces)},
       {"swaps", QVariant(r.swaps)},
       {"smoothed", QVariant(r.smoothed)},
       {"collapsed", QVariant(r.collapsed)},

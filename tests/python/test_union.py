@@ -432,6 +432,56 @@ def test_pipeline_regrid_of_the_ten_sphere_cluster_reaches_30_degrees_at_2_perce
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
+def grid_box(lo, hi, n):
+    """Closed box [lo, hi], each side an n x n grid of squares cut in two, outward."""
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    points, faces = [], []
+    for axis in range(3):
+        u, v = (axis + 1) % 3, (axis + 2) % 3
+        for top in (False, True):
+            base = len(points)
+            for i in range(n + 1):
+                for j in range(n + 1):
+                    p = lo.copy()
+                    p[axis] = hi[axis] if top else lo[axis]
+                    p[u] += (hi[u] - lo[u]) * i / n
+                    p[v] += (hi[v] - lo[v]) * j / n
+                    points.append(p)
+            for i in range(n):
+                for j in range(n):
+                    a, b = base + i * (n + 1) + j, base + (i + 1) * (n + 1) + j
+                    quad = [(a, b, b + 1), (a, b + 1, a + 1)] if top else [(a, b + 1, b), (a, a + 1, b + 1)]
+                    faces += quad
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(np.array(points), np.array(faces)))
+    ms.meshing_remove_duplicate_vertices()
+    return pymeshlab.Mesh(ms.current_mesh().vertex_matrix(), ms.current_mesh().face_matrix())
+
+
+def test_pipeline_regrid_meshes_a_thin_ledge_between_united_blocks_at_30_degrees():
+    # A block with a second one standing on it 0.001 in from its left side (0.05 x the 1% target):
+    # the ledge between the block's edge and the intersection line is meshed with elements about
+    # as long as it is wide (thin-step caps). Before, its one layer of faces had 4.8 degrees.
+    from meshregrid import pipeline_union
+    width = 0.001
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(grid_box((0, 0, 0), (1, 1, 1), 16))
+    ms.add_mesh(grid_box((width, 0, 0.5), (1, 1, 1.5), 16))
+    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
+    regrid = r["remesh"]
+    assert regrid["thin_step_faces"] > 0 and regrid["unmeshed_sides"] == 0
+    m = ms.current_mesh()
+    v, f = m.vertex_matrix(), m.face_matrix()
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    # Faces with a corner on the ledge (z = 1, 0 <= x <= width), away from its two ends.
+    on_ledge = (np.abs(v[:, 2] - 1) < 1e-9) & (v[:, 0] <= width + 1e-9) & (v[:, 1] > 0.05) & (v[:, 1] < 0.95)
+    near = np.any(on_ledge[f], axis=1)
+    assert near.sum() > 1000  # points about 1.7 x width apart along both lines
+    ledge = pymeshlab.Mesh(v, f[near])
+    assert angles(ledge).min() >= 30.0
+
+
 def test_pipeline_keeps_the_first_regrid_when_the_second_try_fails(monkeypatch):
     # A refusal in the second try (here forced) must not lose the first regrid: it stays, and
     # the layers the try made go.
