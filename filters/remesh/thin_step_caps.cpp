@@ -66,14 +66,21 @@ int cap_thin_steps(const TriMesh& mesh, const features::Result& fr, double targe
     const Point3 &a = mesh.face[size_t(f)].cP(z), &b = mesh.face[size_t(f)].cP((z + 1) % 3);
     const double side = (b - a).Norm();
     const double height = side > 0 ? vcg::DoubleArea(mesh.face[size_t(f)]) / side : 0.0;
-    const Point3 nb = normal(beyond);
-    if (!(height > 0 && height < kThin * target) || normal(f) * nb >= kCosAligned) return -1.0;
-    // Beyond the ridge at the apex: a face (not these two) facing as the one beyond this side.
+    if (!(height > 0 && height < kThin * target)) return -1.0;
+    // Beyond the ridge at the apex (a face of another patch), the surface must go on as beyond
+    // this side: a ledge (both beyond faces facing the same way, this face turned from them), or
+    // a strip between a crease and a seam in a flat side, the seam on either line (as where two
+    // united bodies' coplanar sides meet). A rim or a slot (the surfaces beyond face apart) and a
+    // chamfer (turned less than a ledge) are neither.
+    const Point3 n = normal(f), nb = normal(beyond);
+    auto flat = [&](const Point3& m) { return m * n > kCosAligned; };
     bool step = false;
     for (int r : ridges_at[size_t(apex)])
       for (int k = 0; k < edges.valence(r) && !step; ++k) {
         const int g = edges.side(r, k).face;
-        step = g != f && g != beyond && normal(g) * nb > kCosAligned;
+        if (g == beyond || fr.patch_of_face[size_t(g)] == fr.patch_of_face[size_t(f)]) continue;
+        const Point3 ng = normal(g);
+        step = (ng * nb > kCosAligned && !flat(nb)) || (flat(ng) != flat(nb));
       }
     return step && runs_beside(apex, a, b, height) ? height : -1.0;
   };

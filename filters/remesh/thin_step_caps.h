@@ -1,11 +1,11 @@
-// Size caps on thin steps. Where two feature lines run closer than a tenth of the target and
-// the surfaces beyond both face the same way (a ledge where two united bodies' walls stand
-// 0.04 x target apart), the faces between the lines are as thin as the ledge whatever the points
-// along them: 5-degree strips at 1% (joint.off united with a shifted copy). Elements about as
-// long as the ledge is wide fit across it; the caps ask for them there, and the size field's
-// gradation brings the size back up around. Rims and slots (the surfaces beyond face apart),
-// lines closing in on each other (wedges, whose narrow end no size fits) and steps shorter than
-// an element are left alone.
+// Size caps on thin steps. Where two feature lines run closer than a tenth of the target with
+// the surface going on the same way beyond both (a ledge where two united bodies' walls stand
+// 0.04 x target apart, or a seam where their coplanar sides meet beside an edge), the faces
+// between the lines are as thin as the strip whatever the points along them: 5-degree strips
+// at 1% (joint.off united with a shifted copy). Elements about as long as the strip is wide fit
+// across it; the caps ask for them there, and the size field's gradation brings the size back
+// up around. Rims and slots (the surfaces beyond face apart), lines closing in on each other
+// (wedges, whose narrow end no size fits) and steps shorter than an element are left alone.
 #pragma once
 
 #include "common/tri_mesh.h"
@@ -17,9 +17,10 @@ namespace mr::remesh {
 
 /// Lowers `cap` (per input vertex; 0 = no cap) at the corners of thin-step faces: a face with a
 /// ridge side, its third corner on another ridge whose line runs beside that side for at least
-/// `target` without closing in on it, less than 0.1 x `target` high over the side, the faces
-/// beyond both ridges within 30 degrees of each other and the face itself turned further from
-/// them.
+/// `target` without closing in on it, less than 0.1 x `target` high over the side, and beyond
+/// the two ridges either faces within 30 degrees of each other with the face itself turned
+/// further from them (a ledge), or on one of them the face's own plane and on the other not (a
+/// strip between a crease and a seam in a flat side).
 /// The cap is 1.7 x the face's height (aligned points on both lines then make right triangles
 /// of 30 degrees), never below 0.05 x `target`. Returns the number of faces that capped.
 int cap_thin_steps(const TriMesh& mesh, const features::Result& fr, double target, std::vector<double>& cap);

@@ -462,6 +462,9 @@ def test_pipeline_regrid_meshes_a_thin_ledge_between_united_blocks_at_30_degrees
     # A block with a second one standing on it 0.001 in from its left side (0.05 x the 1% target):
     # the ledge between the block's edge and the intersection line is meshed with elements about
     # as long as it is wide (thin-step caps). Before, its one layer of faces had 4.8 degrees.
+    # The blocks' front and back sides are coplanar: there the seam where the second block's side
+    # begins runs 0.001 beside the first one's edge, a strip capped the same way (4.5 degrees
+    # before, 17.6 now; the rest is the corners at the strips' ends).
     from meshregrid import pipeline_union
     width = 0.001
     ms = pymeshlab.MeshSet()
@@ -480,6 +483,7 @@ def test_pipeline_regrid_meshes_a_thin_ledge_between_united_blocks_at_30_degrees
     assert near.sum() > 1000  # points about 1.7 x width apart along both lines
     ledge = pymeshlab.Mesh(v, f[near])
     assert angles(ledge).min() >= 30.0
+    assert angles(m).min() >= 17.0
 
 
 def test_pipeline_keeps_the_first_regrid_when_the_second_try_fails(monkeypatch):

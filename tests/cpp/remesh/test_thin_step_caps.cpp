@@ -1,7 +1,7 @@
 // Thin-step caps: a ledge between two walls facing the same way gets caps of 1.7 x its width at
 // its corners; a wide ledge, a thin plate's rim (the surfaces beyond face apart) and a ledge
 // shorter than an element get none; of a tapering ledge only the face at its
-// narrow end caps.
+// narrow end caps. A strip between an edge and a seam in the flat side beyond it is capped too.
 #include "remesh/thin_step_caps.h"
 #include "common/coherent_orientation.h"
 #include "features/feature_lines.h"
@@ -52,6 +52,7 @@ const std::vector<std::array<int, 3>> kLedgeEnds = {{0, 1, 4}, {1, 2, 3}, {1, 3,
 std::vector<double> caps_of(const TriMesh& m, double target, int& capped) {
   features::Params p;
   p.min_line_length = target;
+  p.use_selected_edges_as_ridges = true;
   const features::Result fr = features::detect(m, p);
   std::vector<double> cap(m.vert.size(), 0.0);
   capped = remesh::cap_thin_steps(m, fr, target, cap);
@@ -109,4 +110,29 @@ TEST(RemeshThinStepCaps, TaperingLedgeIsCappedAtItsNarrowestWidthOnly) {
   EXPECT_EQ(capped, 1);
   for (int v : {4, 10, 11}) EXPECT_NEAR(cap[size_t(v)], 0.05 * 0.05, 1e-12) << v;
   EXPECT_EQ(cap[5], 0.0);
+}
+
+TEST(RemeshThinStepCaps, StripBesideASeamInAFlatSideIsCapped) {
+  // A block whose top is cut by a seam (selected edges, as a union's intersection line where two
+  // bodies' coplanar sides meet) 0.004 in from its left edge: the strip between the edge and the
+  // seam lies in the plane beyond the seam.
+  const double width = 0.004;
+  const int n = 5;
+  for (bool seam : {true, false}) {
+    TriMesh m;
+    prism(m, {{0, 0}, {1, 0}, {1, 1}, {width, 1}, {0, 1}}, {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}}, 1.0);
+    if (seam)
+      for (auto& f : m.face)
+        for (int z = 0; z < 3; ++z) {
+          const int a = int(vcg::tri::Index(m, f.V(z))), b = int(vcg::tri::Index(m, f.V((z + 1) % 3)));
+          if ((a == 3 && b == n + 3) || (a == n + 3 && b == 3)) f.SetFaceEdgeS(z);
+        }
+    int capped = -1;
+    const std::vector<double> cap = caps_of(m, 0.05, capped);
+    EXPECT_EQ(capped, seam ? 2 : 0);
+    for (int v = 0; v < int(cap.size()); ++v) {
+      const bool on_strip = seam && (v % n == 3 || v % n == 4);
+      EXPECT_NEAR(cap[size_t(v)], on_strip ? 1.7 * width : 0.0, 1e-12) << v;
+    }
+  }
 }
