@@ -23,7 +23,6 @@
 #include <vcg/complex/append.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -121,60 +120,6 @@ std::vector<double> small_feature_caps(const TriMesh& mesh, const features::Resu
     for (int v : line.vertices) cap[v] = cap[v] > 0 ? std::min(cap[v], h) : h;
   }
   return cap;
-}
-
-// Faces a size field asks for on input face f: the integral of 1 / (equilateral area of size h)
-// over the face, by the midpoint rule on kCuts x kCuts sub-triangles (the size is linear on the
-// face; a cap at one corner of a long CAD face falls off within a few sub-triangles, where
-// samples at the corners and side midpoints weighed the cap over a seventh of the face: on
-// joint.off united with two copies at 1% they counted 37,000 faces more where the regrid made
-// 8,000 more, and this rule counts 6,000).
-constexpr int kCuts = 6;
-double expected_faces_on(const Surface& s, const SizeField& size, int f) {
-  const auto& t = s.faces[size_t(f)];
-  const double area = 0.5 * ((s.points[t[1]] - s.points[t[0]]) ^ (s.points[t[2]] - s.points[t[0]])).Norm();
-  double sum = 0;
-  int count = 0;
-  for (int i = 0; i < kCuts; ++i)
-    for (int j = 0; i + j < kCuts; ++j)
-      for (int up = 0; up < (i + j + 1 < kCuts ? 2 : 1); ++up) {
-        // Centroid of the sub-triangle (upright or inverted) at grid cell (i, j).
-        const double a = (3 * i + (up ? 2 : 1)) / (3.0 * kCuts), b = (3 * j + (up ? 2 : 1)) / (3.0 * kCuts);
-        const double h = std::max(size.at(f, {1 - a - b, a, b}), 1e-300);
-        sum += 1.0 / (h * h);
-        ++count;
-      }
-  return area * sum / count / (0.25 * std::sqrt(3.0));
-}
-
-// Thin-step caps may add at most this share of the faces the field asks for without them: the
-// exact union's needles (sliver_angle 0) are thin steps by the hundred, and meshing them all
-// took 5x the faces and 30x the time (joint.off united with two copies at 1%).
-constexpr double kThinStepBudget = 0.5;
-
-/// The size field, with caps on thin steps (thin_step_caps.h) where they cost at most
-/// kThinStepBudget more faces; result.thin_step_faces says how many input faces capped (0: none
-/// or over budget).
-SizeField size_field_with_thin_steps(const TriMesh& input, const features::Result& fr, const Surface& surface,
-                                     SizeParams sp, double target, Result& result) {
-  SizeParams stepped = sp;
-  const int steps = cap_thin_steps(input, fr, target, stepped.vertex_cap);
-  SizeField plain(surface, sp);
-  if (steps == 0) return plain;
-  SizeField with_steps(surface, stepped);
-  // Both fields differ only on faces with a corner whose size the steps lowered.
-  double before = 0, added = 0;
-  for (int f = 0; f < int(surface.faces.size()); ++f) {
-    const double faces = expected_faces_on(surface, plain, f);
-    before += faces;
-    const auto& t = surface.faces[size_t(f)];
-    if (with_steps.at_vertex(t[0]) < plain.at_vertex(t[0]) || with_steps.at_vertex(t[1]) < plain.at_vertex(t[1]) ||
-        with_steps.at_vertex(t[2]) < plain.at_vertex(t[2]))
-      added += expected_faces_on(surface, with_steps, f) - faces;
-  }
-  if (added > kThinStepBudget * before) return plain;
-  result.thin_step_faces = steps;
-  return with_steps;
 }
 
 // Work bound of the whole run, shared by every front (repairs and retries included): nearby
@@ -362,7 +307,7 @@ Result remesh_once(const TriMesh& given, const Params& params, SliverChoice choi
   sp.source_segments = params.source_segments;
   sp.vertex_cap = small_feature_caps(input, fr, params.target_length, fp.min_line_length);
   sp.cap_gradation = std::max(kCapGradation, params.gradation);
-  const SizeField size = size_field_with_thin_steps(input, fr, surface, sp, params.target_length, result);
+  const SizeField size = size_field_with_thin_steps(input, fr, surface, sp, params.target_length, &result.thin_step_faces);
   const SurfaceLocator locator(surface, params.target_length);
 
   progress(params, 12, "Discretising feature lines");
