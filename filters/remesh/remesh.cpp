@@ -307,7 +307,7 @@ Result remesh_once(const TriMesh& given, const Params& params, SliverChoice choi
   sp.source_segments = params.source_segments;
   sp.vertex_cap = small_feature_caps(input, fr, params.target_length, fp.min_line_length);
   sp.cap_gradation = std::max(kCapGradation, params.gradation);
-  const SizeField size = size_field_with_thin_steps(input, fr, surface, sp, params.target_length, &result.thin_step_faces);
+  const SizeField size = size_field_with_thin_steps(surface, fr.ridge, sp, params.target_length, &result.thin_step_faces);
   const SurfaceLocator locator(surface, params.target_length);
 
   progress(params, 12, "Discretising feature lines");

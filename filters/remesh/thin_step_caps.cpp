@@ -1,7 +1,5 @@
 #include "remesh/thin_step_caps.h"
 
-#include "common/edge_table.h"
-
 #include <algorithm>
 #include <cmath>
 
@@ -28,18 +26,19 @@ constexpr double kCosSeam = 0.99985;
 
 }  // namespace
 
-int cap_thin_steps(const TriMesh& mesh, const features::Result& fr, double target, std::vector<double>& cap) {
-  const EdgeTable edges(mesh);
-  const int nf = int(mesh.face.size());
-  std::vector<std::vector<int>> ridges_at(mesh.vert.size());  // ridge edges at each vertex
-  for (int e = 0; e < edges.edge_count(); ++e) {
-    const FaceSide s = edges.side(e, 0);
-    if (!fr.ridge[size_t(s.face)][size_t(s.side)]) continue;
-    ridges_at[size_t(edges.v0(e))].push_back(e);
-    ridges_at[size_t(edges.v1(e))].push_back(e);
-  }
-  auto normal = [&](int f) { return vcg::NormalizedTriangleNormal(mesh.face[size_t(f)]); };
-  auto index = [&](int f, int z) { return int(vcg::tri::Index(mesh, mesh.face[size_t(f)].cV(z))); };
+int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& ridge, double target,
+                   std::vector<double>& cap) {
+  const int nf = int(s.faces.size());
+  // Per vertex, the ridge sides of faces there: (the side's other end, the face). A ridge edge
+  // is listed once from each face along it.
+  std::vector<std::vector<std::array<int, 2>>> ridges_at(s.points.size());
+  for (int f = 0; f < nf; ++f)
+    for (int z = 0; z < 3; ++z)
+      if (ridge[size_t(f)][size_t(z)]) {
+        const int u = s.faces[size_t(f)][size_t(z)], w = s.faces[size_t(f)][size_t((z + 1) % 3)];
+        ridges_at[size_t(u)].push_back({w, f});
+        ridges_at[size_t(w)].push_back({u, f});
+      }
   // The line through the apex runs beside the side (a to b): one of its ridge edges there runs
   // along the side (within 30 degrees) for at least kMinRun x target of the side's length (a
   // line that leaves the apex away from the side, as at the reflex corner of an L-shaped end
@@ -49,11 +48,12 @@ int cap_thin_steps(const TriMesh& mesh, const features::Result& fr, double targe
   auto runs_beside = [&](int apex, const Point3& a, const Point3& b, double height) {
     const double side = (b - a).Norm();
     const Point3 dir = (b - a) / side;
-    const double t_apex = (mesh.vert[size_t(apex)].cP() - a).dot(dir);
+    const Point3& q = s.points[size_t(apex)];
+    const double t_apex = (q - a).dot(dir);
     bool runs = false;
-    for (int e : ridges_at[size_t(apex)]) {
-      const Point3& p = mesh.vert[size_t(edges.v0(e) == apex ? edges.v1(e) : edges.v0(e))].cP();
-      const Point3 d = p - mesh.vert[size_t(apex)].cP();
+    for (const auto& [other, face] : ridges_at[size_t(apex)]) {
+      const Point3& p = s.points[size_t(other)];
+      const Point3 d = p - q;
       if (!(d.Norm() > 0) || std::fabs(d.dot(dir)) < kCosAligned * d.Norm()) continue;
       const double t = (p - a).dot(dir);
       if (((p - a) - dir * t).Norm() < 0.5 * height) return false;
@@ -63,29 +63,28 @@ int cap_thin_steps(const TriMesh& mesh, const features::Result& fr, double targe
   };
   // Height of face f over its side z if that side and the apex make a thin step, else -1.
   auto step_height = [&](int f, int z) {
-    const int e = edges.edge_of(f, z);
-    const int beyond = edges.opposite_face(f, z);
-    const int apex = index(f, (z + 2) % 3);
-    if (e < 0 || !fr.ridge[size_t(f)][size_t(z)] || beyond < 0 || ridges_at[size_t(apex)].empty()) return -1.0;
-    const Point3 &a = mesh.face[size_t(f)].cP(z), &b = mesh.face[size_t(f)].cP((z + 1) % 3);
+    const auto& t = s.faces[size_t(f)];
+    const int beyond = s.neighbour[size_t(f)][size_t(z)];
+    const int apex = t[size_t((z + 2) % 3)];
+    if (!ridge[size_t(f)][size_t(z)] || beyond < 0 || ridges_at[size_t(apex)].empty()) return -1.0;
+    const Point3 &a = s.points[size_t(t[size_t(z)])], &b = s.points[size_t(t[size_t((z + 1) % 3)])];
     const double side = (b - a).Norm();
-    const double height = side > 0 ? vcg::DoubleArea(mesh.face[size_t(f)]) / side : 0.0;
+    const double height = side > 0 ? ((b - a) ^ (s.points[size_t(apex)] - a)).Norm() / side : 0.0;
     if (!(height > 0 && height < kThin * target)) return -1.0;
     // Beyond the ridge at the apex (a face of another patch), the surface must go on as beyond
     // this side: a ledge (both beyond faces facing the same way, this face turned from them), or
     // a strip between a crease and a seam in a flat side, the seam on either line (as where two
     // united bodies' coplanar sides meet). A rim or a slot (the surfaces beyond face apart) and a
-    // chamfer (turned less than a ledge) are neither.
-    const Point3 n = normal(f), nb = normal(beyond);
+    // chamfer (turned less than a ledge) are neither. (Degenerate faces have no normal: never.)
+    const Point3 &n = s.face_normal[size_t(f)], &nb = s.face_normal[size_t(beyond)];
     auto flat = [&](const Point3& m) { return m * n > kCosSeam; };
     bool step = false;
-    for (int r : ridges_at[size_t(apex)])
-      for (int k = 0; k < edges.valence(r) && !step; ++k) {
-        const int g = edges.side(r, k).face;
-        if (g == beyond || fr.patch_of_face[size_t(g)] == fr.patch_of_face[size_t(f)]) continue;
-        const Point3 ng = normal(g);
-        step = (ng * nb > kCosAligned && !flat(nb)) || (flat(ng) != flat(nb));
-      }
+    for (const auto& [other, g] : ridges_at[size_t(apex)]) {
+      if (g == beyond || s.group[size_t(g)] == s.group[size_t(f)]) continue;
+      const Point3& ng = s.face_normal[size_t(g)];
+      step = (ng * nb > kCosAligned && !flat(nb)) || (flat(ng) != flat(nb));
+      if (step) break;
+    }
     return step && runs_beside(apex, a, b, height) ? height : -1.0;
   };
   int capped = 0;
@@ -94,8 +93,8 @@ int cap_thin_steps(const TriMesh& mesh, const features::Result& fr, double targe
     for (int z = 0; z < 3 && height < 0; ++z) height = step_height(f, z);
     if (height < 0) continue;
     const double h = std::max(kCap * height, kFloor * target);
-    for (int z = 0; z < 3; ++z) {
-      double& c = cap[size_t(index(f, z))];
+    for (int v : s.faces[size_t(f)]) {
+      double& c = cap[size_t(v)];
       c = c > 0 ? std::min(c, h) : h;
     }
     ++capped;
@@ -135,11 +134,12 @@ constexpr double kThinStepBudget = 0.5;
 
 }  // namespace
 
-SizeField size_field_with_thin_steps(const TriMesh& input, const features::Result& fr, const Surface& surface,
+SizeField size_field_with_thin_steps(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
                                      const SizeParams& sp, double target, int* thin_step_faces) {
   if (thin_step_faces) *thin_step_faces = 0;
   SizeParams stepped = sp;
-  const int steps = cap_thin_steps(input, fr, target, stepped.vertex_cap);
+  stepped.vertex_cap.resize(surface.points.size(), 0.0);
+  const int steps = cap_thin_steps(surface, ridge, target, stepped.vertex_cap);
   SizeField plain(surface, sp);
   if (steps == 0) return plain;
   SizeField with_steps(surface, stepped);

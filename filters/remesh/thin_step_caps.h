@@ -8,30 +8,31 @@
 // (wedges, whose narrow end no size fits) and steps shorter than an element are left alone.
 #pragma once
 
-#include "common/tri_mesh.h"
-#include "features/feature_lines.h"
 #include "remesh/size_field.h"
+#include "remesh/surface_locator.h"
 
+#include <array>
 #include <vector>
 
 namespace mr::remesh {
 
-/// Lowers `cap` (per input vertex; 0 = no cap) at the corners of thin-step faces: a face with a
-/// ridge side, its third corner on another ridge whose line runs beside that side for at least
+/// Lowers `cap` (per surface point; 0 = no cap) at the corners of thin-step faces of `s`, whose
+/// `ridge` (per face and side, stage 1's) are the feature lines: a face with a ridge side, its third corner on another ridge whose line runs beside that side for at least
 /// `target` without closing in on it, less than 0.1 x `target` high over the side, and beyond
 /// the two ridges either faces within 30 degrees of each other with the face itself turned
 /// further from them (a ledge), or on one of them the face's own plane and on the other not (a
 /// strip between a crease and a seam in a flat side).
 /// The cap is 1.7 x the face's height (aligned points on both lines then make right triangles
 /// of 30 degrees), never below 0.05 x `target`. Returns the number of faces that capped.
-int cap_thin_steps(const TriMesh& mesh, const features::Result& fr, double target, std::vector<double>& cap);
+int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& ridge, double target,
+                   std::vector<double>& cap);
 
-/// The size field of `sp` on `surface` (built from `input`), with the thin steps' caps where they
+/// The size field of `sp` on `surface`, with the thin steps' caps where they
 /// add at most half the faces the field asks for without them: the exact union's needles are thin
 /// steps by the hundred, and meshing them all took 5x the faces and 30x the time (joint.off united
 /// with two copies at 1%). `thin_step_faces` (optional) gets the input faces that capped (0: none,
 /// or over that budget).
-SizeField size_field_with_thin_steps(const TriMesh& input, const features::Result& fr, const Surface& surface,
+SizeField size_field_with_thin_steps(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
                                      const SizeParams& sp, double target, int* thin_step_faces = nullptr);
 
 }  // namespace mr::remesh

@@ -54,8 +54,9 @@ std::vector<double> caps_of(const TriMesh& m, double target, int& capped) {
   p.min_line_length = target;
   p.use_selected_edges_as_ridges = true;
   const features::Result fr = features::detect(m, p);
+  const remesh::Surface s = remesh::Surface::from_mesh(m, fr.patch_of_face);
   std::vector<double> cap(m.vert.size(), 0.0);
-  capped = remesh::cap_thin_steps(m, fr, target, cap);
+  capped = remesh::cap_thin_steps(s, fr.ridge, target, cap);
   return cap;
 }
 
