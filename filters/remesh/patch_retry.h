@@ -1,5 +1,5 @@
 // What a patch's front left behind, and taking it back: a patch whose front could not close
-// (unmeshed sides) or pinched a free point (its faces around it form two fans, a non-manifold
+// (unmeshed sides) or pinched a point (its faces around it form two fans, a non-manifold
 // vertex) is meshed again with smaller elements, which pass thin parts of the surface.
 #pragma once
 
@@ -9,7 +9,9 @@
 
 namespace mr::remesh {
 
-/// Free points of `patch` whose faces do not form one fan (non-manifold vertices), ascending.
+/// Points where the faces of `patch` make more than one fan (non-manifold vertices), ascending:
+/// free points with two fans or more, line and corner points with two or more of which one
+/// closes all round the point (elsewhere a patch may border a line or corner point twice).
 std::vector<int> pinched_points(const OutputMesh& out, int patch);
 
 /// Removes the faces of `patch` (its points stay, unused) and the shared edges only they used.

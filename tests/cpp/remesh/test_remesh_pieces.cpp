@@ -272,6 +272,28 @@ TEST(RemeshPieces, PolylineGapIsTheLargestDistanceBothWays) {
   EXPECT_NEAR(polyline_gap(straight, {Point3(0, 0, 0), Point3(1, 0, 0)}), 1.0, 1e-12);
 }
 
+TEST(RemeshPieces, CornerWithAFanClosedAllRoundIsPinchedAndOneBorderedTwiceIsNot) {
+  // Corner 0 at the origin. Patch 0 has a fan of three faces closed all round it (points 1-3)
+  // and, apart from it, face (0, 4, 5): a pinch. Patch 1 borders line point 6 twice with two
+  // open fans (faces (6, 7, 8) and (6, 9, 10), a patch wrapping round): not a pinch.
+  remesh::OutputMesh out;
+  for (const Point3& p : {Point3(0, 0, 0), Point3(1, 0, 0), Point3(-0.5, 1, 0), Point3(-0.5, -1, 0),
+                          Point3(3, 0, 0), Point3(3, 1, 0), Point3(10, 0, 0), Point3(11, 0, 0),
+                          Point3(11, 1, 0), Point3(9, 0, 0), Point3(9, -1, 0)})
+    out.add_point(p, 0, remesh::PointKind::Free);
+  out.kind[0] = remesh::PointKind::Corner;
+  out.kind[4] = out.kind[5] = out.kind[6] = out.kind[7] = out.kind[9] = remesh::PointKind::Line;
+  out.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {0, 4, 5}, {6, 7, 8}, {6, 9, 10}};
+  out.face_patch = {0, 0, 0, 0, 1, 1};
+  EXPECT_EQ(remesh::pinched_points(out, 0), std::vector<int>{0});
+  EXPECT_TRUE(remesh::pinched_points(out, 1).empty());
+  out.faces.pop_back();  // the closed fan alone (a dangling line's end inside the patch) is fine
+  out.face_patch.pop_back();
+  out.faces.erase(out.faces.begin() + 3);
+  out.face_patch.erase(out.face_patch.begin() + 3);
+  EXPECT_TRUE(remesh::pinched_points(out, 0).empty());
+}
+
 TEST(RemeshPieces, PinchedPointHasTwoFansAndRemovingAPatchKeepsTheOthers) {
   // Two triangles of patch 0 touching only at free point 0 (a bowtie), one triangle of patch 1.
   remesh::OutputMesh out;
