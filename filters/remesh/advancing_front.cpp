@@ -19,6 +19,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
+constexpr double kFlatEar = 1e-6;  // radians: an ear's smallest angle below this is no triangle
 constexpr size_t kMaxLastResortLoop = 16;  // longer loops left by the front stay open (reported)
 // Work bound of a front besides its step bound: nearby points looked at by the candidate checks,
 // per allowed step. The seven benchmark meshes at 1% need at most 1.6 per allowed step in any
@@ -562,19 +563,25 @@ void PatchMesher::close_loop(std::vector<int> loop) {
       if (a == c || edge_taken(c, a)) continue;
       const Point3 &pa = out_.points[a], &pb = out_.points[b], &pc = out_.points[c];
       const Point3 surface_normal = local(a).normal + local(b).normal + local(c).normal;
-      const double agree = unit_normal(pa, pb, pc) * surface_normal > 0 ? 1.0 : 0.0;
+      // (A flat ear has no normal of its own: the rounding's would agree half the time.)
+      const double angle = min_angle(pa, pb, pc);
+      const double agree = angle > kFlatEar && unit_normal(pa, pb, pc) * surface_normal > 0 ? 1.0 : 0.0;
       // One step ahead: an ear that leaves only flat ears beside it (three points on one line,
       // as where a strip's zipper meets) is worth no more than they are.
       const Point3 &pl = out_.points[loop[(i + n - 2) % n]], &pr = out_.points[loop[(i + 2) % n]];
       const double ahead = std::max(min_angle(pl, pa, pc), min_angle(pa, pc, pr));
-      ears.push_back({agree * 10.0 + std::min(min_angle(pa, pb, pc), ahead), i});
+      // An ear that leaves only flat ears beside it ends in a flat face: a last choice.
+      ears.push_back({(ahead > kFlatEar ? agree * 10.0 : 0.0) + std::min(angle, ahead), i});
     }
     // Best first; the costlier check against other patches only until one passes.
     std::sort(ears.begin(), ears.end(), std::greater<>());
     size_t chosen = n;
     for (const auto& [score, i] : ears)
       if (!over_other_patch(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n])) { chosen = i; break; }
-    if (chosen == n) { fan_from_centre(loop); return; }
+    // Only flat ears, or ears that leave one (the diagonals that would not are edges elsewhere,
+    // fuzz_union --models seed 72: a face with three points on one line): a point inside makes
+    // proper faces.
+    if (chosen == n || ears.front().first <= kFlatEar) { fan_from_centre(loop); return; }
     add_triangle(loop[(chosen + n - 1) % n], loop[chosen], loop[(chosen + 1) % n]);
     loop.erase(loop.begin() + long(chosen));
   }

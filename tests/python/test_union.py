@@ -495,6 +495,22 @@ def axis_turn(quarters):
     return rz @ ry @ rx
 
 
+def joint_and_two_copies(grid_shift, quarters, turned_random, turned_scale):
+    """joint.off with a copy shifted by grid_shift x its size and one turned by quarter turns
+    and shifted by (turned_random - 0.5) x its size x turned_scale, built in the same order of
+    operations as scripts/fuzz_union.py --models (the cases are bit-exact)."""
+    src = load("cad/joint.off")
+    base = src.current_mesh()
+    v, f = base.vertex_matrix(), base.face_matrix()
+    centre, size = v.mean(0), np.ptp(v, 0).max()
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(v, f))
+    ms.add_mesh(pymeshlab.Mesh((v - centre) @ np.eye(3).T + centre + np.array(grid_shift) * size, f))
+    shift = (np.array(turned_random) - 0.5) * size * turned_scale
+    ms.add_mesh(pymeshlab.Mesh((v - centre) @ axis_turn(quarters).T + centre + shift, f))
+    return ms
+
+
 def test_pipeline_regrid_of_joint_with_a_shifted_and_a_turned_copy_is_closed_and_two_manifold():
     # scripts/fuzz_union.py --models, seed 40: joint.off with a shifted copy and a copy turned by
     # quarter turns. The regrid of the stepped union pinched two corners and a line point (a
@@ -502,21 +518,31 @@ def test_pipeline_regrid_of_joint_with_a_shifted_and_a_turned_copy_is_closed_and
     # a fan all round it), the exact union's regrid left 25 sides open, and the pipeline kept
     # that open one. The fronts now take such points only within the angle still to mesh.
     from meshregrid import pipeline_union
-    src = load("cad/joint.off")
-    base = src.current_mesh()
-    v, f = base.vertex_matrix(), base.face_matrix()
-    centre, size = v.mean(0), np.ptp(v, 0).max()
-    shift = (np.array([0.47568317752097466, 0.3383906909861234, 0.6018828052702476]) - 0.5) * size * 0.3
-    ms = pymeshlab.MeshSet()
-    ms.add_mesh(pymeshlab.Mesh(v, f))
-    ms.add_mesh(pymeshlab.Mesh((v - centre) @ np.eye(3).T + centre + np.array([0.125, 0.25, -0.25]) * size, f))
-    ms.add_mesh(pymeshlab.Mesh((v - centre) @ axis_turn([2, 0, 3]).T + centre + shift, f))
+    ms = joint_and_two_copies([0.125, 0.25, -0.25], [2, 0, 3],
+                              [0.47568317752097466, 0.3383906909861234, 0.6018828052702476], 0.3)
     r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
     regrid = r["remesh"]
     assert regrid["unmeshed_sides"] == 0 and regrid["non_manifold_points"] == 0
     topo = ms.get_topological_measures()
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
     assert topo["non_two_manifold_vertices"] == 0
+
+
+def test_pipeline_regrid_of_joint_with_two_copies_has_no_flat_face():
+    # scripts/fuzz_union.py --models, seed 72. A loop the front left (four points, one of them
+    # on the line between two others) was closed by ear clipping whose only free diagonal ran
+    # through that point: a face with its three corners on one line (smallest angle 1e-13
+    # degrees). Such a loop now gets a point inside and a fan. Measured 0.37 degrees, a corner
+    # beside a line 0.0001 of the diagonal away.
+    from meshregrid import pipeline_union
+    ms = joint_and_two_copies([-0.25, -0.125, -0.1875], [2, 2, 1],
+                              [0.573307837688134, 0.05189084257269705, 0.2913169191596523], 0.0)
+    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
+    regrid = r["remesh"]
+    assert regrid["unmeshed_sides"] == 0 and regrid["non_manifold_points"] == 0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    assert angles(ms.current_mesh()).min() > 0.1
 
 
 def test_pipeline_keeps_the_first_regrid_when_the_second_try_fails(monkeypatch):
