@@ -73,7 +73,7 @@ private:
   bool over_generated_face(const Point3& p, const Point3& normal) const;
   void close_loops(size_t max_sides);
   void close_loop(std::vector<int> loop);
-  void fan_from_centre(const std::vector<int>& loop);
+  bool fan_from_centre(const std::vector<int>& loop, double must_beat = -1.0);
 
   OutputMesh& out_;
   int patch_;
@@ -579,9 +579,10 @@ void PatchMesher::close_loop(std::vector<int> loop) {
     for (const auto& [score, i] : ears)
       if (!over_other_patch(loop[(i + n - 1) % n], loop[i], loop[(i + 1) % n])) { chosen = i; break; }
     // Only flat ears, or ears that leave one (the diagonals that would not are edges elsewhere,
-    // fuzz_union --models seed 72: a face with three points on one line): a point inside makes
-    // proper faces.
-    if (chosen == n || ears.front().first <= kFlatEar) { fan_from_centre(loop); return; }
+    // fuzz_union --models seed 72: a face with three points on one line): a point inside, where
+    // it makes proper faces.
+    if (chosen == n) { fan_from_centre(loop); return; }
+    if (ears.front().first <= kFlatEar && fan_from_centre(loop, kFlatEar)) return;
     add_triangle(loop[(chosen + n - 1) % n], loop[chosen], loop[(chosen + 1) % n]);
     loop.erase(loop.begin() + long(chosen));
   }
@@ -591,17 +592,24 @@ void PatchMesher::close_loop(std::vector<int> loop) {
 // A loop no ear can close (where the scan folds, its diagonals are edges elsewhere already):
 // a new point at its centre, projected onto the patch, and a fan of faces to it; every new
 // edge ends at the new point, so none is taken.
-void PatchMesher::fan_from_centre(const std::vector<int>& loop) {
+bool PatchMesher::fan_from_centre(const std::vector<int>& loop, double must_beat) {
   Point3 centre(0, 0, 0), normal(0, 0, 0);
   for (int v : loop) { centre += out_.points[v]; normal += local(v).normal; }
   centre /= double(loop.size());
   const Projection pr = loc_.locate(centre, patch_, normal, local(loop[0]).host, size_.max_size());
   const int host = pr.face >= 0 ? pr.face : local(loop[0]).host;
-  if (host < 0) return;
-  const int c = out_.add_point(pr.face >= 0 ? pr.point : centre, host, PointKind::Free);
+  if (host < 0) return false;
+  const Point3 p = pr.face >= 0 ? pr.point : centre;
+  // (A loop on one line, a strip of no width, has no point that makes proper faces either.)
+  double worst = std::numeric_limits<double>::max();
+  for (size_t k = 0; k < loop.size(); ++k)
+    worst = std::min(worst, min_angle(out_.points[loop[k]], out_.points[loop[(k + 1) % loop.size()]], p));
+  if (worst <= must_beat) return false;
+  const int c = out_.add_point(p, host, PointKind::Free);
   result_.new_points++;
   local(c);
   for (size_t k = 0; k < loop.size(); ++k) add_triangle(loop[k], loop[(k + 1) % loop.size()], c);
+  return true;
 }
 
 double PatchMesher::estimated_faces() const {
