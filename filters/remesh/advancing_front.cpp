@@ -567,10 +567,10 @@ void PatchMesher::close_loop(std::vector<int> loop) {
       const double angle = min_angle(pa, pb, pc);
       const double agree = angle > kFlatEar && unit_normal(pa, pb, pc) * surface_normal > 0 ? 1.0 : 0.0;
       // One step ahead: an ear that leaves only flat ears beside it (three points on one line,
-      // as where a strip's zipper meets) is worth no more than they are.
+      // as where a strip's zipper meets) is worth no more than they are, agreeing or not: it
+      // ends in a flat face, a last choice.
       const Point3 &pl = out_.points[loop[(i + n - 2) % n]], &pr = out_.points[loop[(i + 2) % n]];
       const double ahead = std::max(min_angle(pl, pa, pc), min_angle(pa, pc, pr));
-      // An ear that leaves only flat ears beside it ends in a flat face: a last choice.
       ears.push_back({(ahead > kFlatEar ? agree * 10.0 : 0.0) + std::min(angle, ahead), i});
     }
     // Best first; the costlier check against other patches only until one passes.
