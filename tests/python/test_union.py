@@ -511,21 +511,26 @@ def joint_and_two_copies(grid_shift, quarters, turned_random, turned_scale):
     return ms
 
 
+def regrid_is_closed_and_two_manifold(ms, percent):
+    """Union the layers of `ms` and regrid at `percent` (the pipeline), asserting the regrid is
+    complete, closed and two-manifold."""
+    from meshregrid import pipeline_union
+    regrid = pipeline_union.union(ms, remesh=True, target_percent=percent)["remesh"]
+    assert regrid["unmeshed_sides"] == 0 and regrid["non_manifold_points"] == 0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    assert topo["non_two_manifold_vertices"] == 0
+
+
 def test_pipeline_regrid_of_joint_with_a_shifted_and_a_turned_copy_is_closed_and_two_manifold():
     # scripts/fuzz_union.py --models, seed 40: joint.off with a shifted copy and a copy turned by
     # quarter turns. The regrid of the stepped union pinched two corners and a line point (a
     # patch's front took a corner or line point from outside the patch's angle there and closed
     # a fan all round it), the exact union's regrid left 25 sides open, and the pipeline kept
     # that open one. The fronts now take such points only within the angle still to mesh.
-    from meshregrid import pipeline_union
     ms = joint_and_two_copies([0.125, 0.25, -0.25], [2, 0, 3],
                               [0.47568317752097466, 0.3383906909861234, 0.6018828052702476], 0.3)
-    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
-    regrid = r["remesh"]
-    assert regrid["unmeshed_sides"] == 0 and regrid["non_manifold_points"] == 0
-    topo = ms.get_topological_measures()
-    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
-    assert topo["non_two_manifold_vertices"] == 0
+    regrid_is_closed_and_two_manifold(ms, 1.0)
 
 
 def test_pipeline_regrid_of_joint_with_two_copies_has_no_flat_face():
@@ -534,14 +539,9 @@ def test_pipeline_regrid_of_joint_with_two_copies_has_no_flat_face():
     # through that point: a face with its three corners on one line (smallest angle 1e-13
     # degrees). Such a loop now gets a point inside and a fan. Measured 0.37 degrees, a corner
     # beside a line 0.0001 of the diagonal away.
-    from meshregrid import pipeline_union
     ms = joint_and_two_copies([-0.25, -0.125, -0.1875], [2, 2, 1],
                               [0.573307837688134, 0.05189084257269705, 0.2913169191596523], 0.0)
-    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
-    regrid = r["remesh"]
-    assert regrid["unmeshed_sides"] == 0 and regrid["non_manifold_points"] == 0
-    topo = ms.get_topological_measures()
-    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    regrid_is_closed_and_two_manifold(ms, 1.0)
     assert angles(ms.current_mesh()).min() > 0.1
 
 
@@ -551,14 +551,9 @@ def test_pipeline_regrid_at_2_percent_closes_a_long_strip_between_two_close_line
     # 31 sides in the stepped union's regrid and 34 in the exact one's: loops of more than 16
     # sides were left open. A loop of line points only, that thin, is now zipped like a thin
     # patch.
-    from meshregrid import pipeline_union
     ms = joint_and_two_copies([0.1875, 0.125, 0.1875], [0, 1, 2],
                               [0.6487956520829201, 0.2828522375542264, 0.282879721819282], 0.0)
-    r = pipeline_union.union(ms, remesh=True, target_percent=2.0)
-    regrid = r["remesh"]
-    assert regrid["unmeshed_sides"] == 0 and regrid["non_manifold_points"] == 0
-    topo = ms.get_topological_measures()
-    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    regrid_is_closed_and_two_manifold(ms, 2.0)
 
 
 def test_pipeline_keeps_the_first_regrid_when_the_second_try_fails(monkeypatch):
@@ -686,19 +681,13 @@ def test_box_union_of_its_plates_as_layers_regridded_at_1_percent_is_two_manifol
     # such pairs (stop 37, tests/cpp/remesh/test_flat_pockets.cpp); since stop 45 the second
     # face is not made here at all (a front takes a line or corner point only within the angle
     # still to mesh there), so no pair is left to remove.
-    from meshregrid import pipeline_union
     src = load("multicomponent/box.STL")
     src.meshing_remove_duplicate_vertices()
     src.generate_splitting_by_connected_components()
     ms = pymeshlab.MeshSet()
     for i in range(1, src.mesh_number()):
         ms.add_mesh(pymeshlab.Mesh(src.mesh(i).vertex_matrix(), src.mesh(i).face_matrix()))
-    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)
-    regrid = r["remesh"]
-    assert regrid["unmeshed_sides"] == 0 and regrid["non_manifold_points"] == 0
-    topo = ms.get_topological_measures()
-    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
-    assert topo["non_two_manifold_vertices"] == 0
+    regrid_is_closed_and_two_manifold(ms, 1.0)
 
 
 def test_cli_union_writes_union_and_lines(tmp_path):
