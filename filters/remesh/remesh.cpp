@@ -11,6 +11,7 @@
 #include "remesh/local_repair.h"
 #include "remesh/mesh_improvement.h"
 #include "remesh/mesh_measures.h"
+#include "remesh/neck_caps.h"
 #include "remesh/output_mesh.h"
 #include "remesh/patch_retry.h"
 #include "remesh/size_field.h"
@@ -307,7 +308,11 @@ Result remesh_once(const TriMesh& given, const Params& params, SliverChoice choi
   sp.source_segments = params.source_segments;
   sp.vertex_cap = small_feature_caps(input, fr, params.target_length, fp.min_line_length);
   sp.cap_gradation = std::max(kCapGradation, params.gradation);
-  const SizeField size = size_field_with_thin_steps(surface, fr.ridge, sp, params.target_length, &result.thin_step_faces);
+  // Necks between lines that pass closer than a tenth of the target (neck_caps.h).
+  std::vector<double> neck_cap(surface.points.size(), 0.0);
+  cap_necks(surface, fr.lines, params.target_length, neck_cap);
+  const SizeField size = size_field_with_thin_steps(surface, fr.ridge, sp, params.target_length, &result.thin_step_faces,
+                                                    &neck_cap, &result.neck_points);
   const SurfaceLocator locator(surface, params.target_length);
 
   progress(params, 12, "Discretising feature lines");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace mr::remesh {
 
@@ -132,30 +133,63 @@ double expected_faces_on(const Surface& s, const SizeField& size, int f) {
 // header).
 constexpr double kThinStepBudget = 0.5;
 
+/// The faces `with` asks for beyond `base` (which differ only where `with` lowered a corner's
+/// size), and all the faces `base` asks for.
+std::pair<double, double> faces_before_and_added(const Surface& surface, const SizeField& base, const SizeField& with) {
+  double before = 0, added = 0;
+  for (int f = 0; f < int(surface.faces.size()); ++f) {
+    const double faces = expected_faces_on(surface, base, f);
+    before += faces;
+    const auto& t = surface.faces[size_t(f)];
+    if (with.at_vertex(t[0]) < base.at_vertex(t[0]) || with.at_vertex(t[1]) < base.at_vertex(t[1]) ||
+        with.at_vertex(t[2]) < base.at_vertex(t[2]))
+      added += expected_faces_on(surface, with, f) - faces;
+  }
+  return {before, added};
+}
+
 }  // namespace
 
 SizeField size_field_with_thin_steps(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
-                                     const SizeParams& sp, double target, int* thin_step_faces) {
+                                     const SizeParams& sp, double target, int* thin_step_faces,
+                                     const std::vector<double>* neck_cap, int* neck_points) {
   if (thin_step_faces) *thin_step_faces = 0;
+  if (neck_points) *neck_points = 0;
   SizeParams stepped = sp;
   stepped.vertex_cap.resize(surface.points.size(), 0.0);
   const int steps = cap_thin_steps(surface, ridge, target, stepped.vertex_cap);
-  SizeField plain(surface, sp);
-  if (steps == 0) return plain;
-  SizeField with_steps(surface, stepped);
-  // Both fields differ only on faces with a corner whose size the steps lowered.
-  double before = 0, added = 0;
-  for (int f = 0; f < int(surface.faces.size()); ++f) {
-    const double faces = expected_faces_on(surface, plain, f);
-    before += faces;
-    const auto& t = surface.faces[size_t(f)];
-    if (with_steps.at_vertex(t[0]) < plain.at_vertex(t[0]) || with_steps.at_vertex(t[1]) < plain.at_vertex(t[1]) ||
-        with_steps.at_vertex(t[2]) < plain.at_vertex(t[2]))
-      added += expected_faces_on(surface, with_steps, f) - faces;
+  const SizeField plain(surface, sp);
+  SizeParams kept = sp;
+  std::optional<SizeField> with_steps;
+  if (steps > 0) {
+    with_steps.emplace(surface, stepped);
+    const auto [before, added] = faces_before_and_added(surface, plain, *with_steps);
+    if (added <= kThinStepBudget * before) {
+      if (thin_step_faces) *thin_step_faces = steps;
+      kept = std::move(stepped);
+    } else {
+      with_steps.reset();
+    }
   }
-  if (added > kThinStepBudget * before) return plain;
-  if (thin_step_faces) *thin_step_faces = steps;
-  return with_steps;
+  const SizeField& field = with_steps ? *with_steps : plain;
+  // The necks on top, within a budget of their own: over it, the steps stay as they were.
+  int necks = 0;
+  if (neck_cap) {
+    kept.vertex_cap.resize(surface.points.size(), 0.0);
+    for (size_t v = 0; v < neck_cap->size() && v < kept.vertex_cap.size(); ++v) {
+      const double c = (*neck_cap)[v];
+      if (!(c > 0)) continue;
+      double& k = kept.vertex_cap[v];
+      k = k > 0 ? std::min(k, c) : c;
+      ++necks;
+    }
+  }
+  if (necks == 0) return field;
+  SizeField with_necks(surface, kept);
+  const auto [before, added] = faces_before_and_added(surface, field, with_necks);
+  if (added > kThinStepBudget * before) return field;
+  if (neck_points) *neck_points = necks;
+  return with_necks;
 }
 
 }  // namespace mr::remesh

@@ -32,7 +32,12 @@ int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& rid
 /// steps by the hundred, and meshing them all took 5x the faces and 30x the time (joint.off united
 /// with two copies at 1%). `thin_step_faces` (optional) gets the input faces that capped (0: none,
 /// or over that budget).
+/// `neck_cap` (optional, per surface point, 0 = none; neck_caps.h) is applied on top, within a
+/// budget of its own measured against the field with the steps: over it the necks are dropped
+/// and the steps stay. `neck_points` (optional) gets the points the necks capped (0: none, or
+/// over that budget).
 SizeField size_field_with_thin_steps(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
-                                     const SizeParams& sp, double target, int* thin_step_faces = nullptr);
+                                     const SizeParams& sp, double target, int* thin_step_faces = nullptr,
+                                     const std::vector<double>* neck_cap = nullptr, int* neck_points = nullptr);
 
 }  // namespace mr::remesh

@@ -1,0 +1,127 @@
+#include "remesh/neck_caps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+namespace mr::remesh {
+
+namespace {
+
+// Lines closer than this x target make a neck; caps never go below kFloor x target. The same
+// bounds as thin steps (thin_step_caps.cpp): 1.7 x the width gives 30-degree right triangles.
+constexpr double kThin = 0.1, kFloor = 0.05, kCap = 1.7;
+
+double distance_to_segment(const Point3& p, const Point3& a, const Point3& b) {
+  const Point3 ab = b - a;
+  const double len2 = ab * ab;
+  const double t = len2 > 0 ? std::clamp(((p - a) * ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + ab * t)).Norm();
+}
+
+/// Segments filed in the cells their sample points fall in: every segment passing within
+/// half a cell of a point has a sample in one of the 27 cells around it.
+class SegmentGrid {
+public:
+  explicit SegmentGrid(double cell) : cell_(cell) {}
+  void add(const Point3& a, const Point3& b, int segment) {
+    // Samples a quarter cell apart: the one nearest any point of the segment is within an
+    // eighth of a cell of it.
+    const int n = std::max(1, int(std::ceil((b - a).Norm() / (0.25 * cell_))));
+    int64_t last = 0;
+    for (int k = 0; k <= n; ++k) {
+      const int64_t c = key(a + (b - a) * (double(k) / n));
+      if (k > 0 && c == last) continue;
+      std::vector<int>& list = cells_[c];
+      if (list.empty() || list.back() != segment) list.push_back(segment);
+      last = c;
+    }
+  }
+  template <class Visit>
+  void around(const Point3& p, Visit&& visit) const {
+    const int64_t i = index(p[0]), j = index(p[1]), k = index(p[2]);
+    for (int64_t di = -1; di <= 1; ++di)
+      for (int64_t dj = -1; dj <= 1; ++dj)
+        for (int64_t dk = -1; dk <= 1; ++dk) {
+          const auto it = cells_.find(pack(i + di, j + dj, k + dk));
+          if (it != cells_.end())
+            for (int s : it->second) visit(s);
+        }
+  }
+
+private:
+  int64_t index(double x) const { return int64_t(std::floor(x / cell_)); }
+  static int64_t pack(int64_t i, int64_t j, int64_t k) {
+    return (i & 0x1FFFFF) | ((j & 0x1FFFFF) << 21) | ((k & 0x1FFFFF) << 42);
+  }
+  int64_t key(const Point3& p) const { return pack(index(p[0]), index(p[1]), index(p[2])); }
+  double cell_;
+  std::unordered_map<int64_t, std::vector<int>> cells_;
+};
+
+}  // namespace
+
+int cap_necks(const Surface& s, const std::vector<features::DiscreteLine>& lines, double target,
+              std::vector<double>& cap) {
+  const double reach = kThin * target;
+  if (!(reach > 0) || lines.size() < 2) return 0;
+  struct Segment {
+    int a, b, line;
+  };
+  std::vector<Segment> segments;
+  SegmentGrid grid(2 * reach);
+  for (int l = 0; l < int(lines.size()); ++l) {
+    const auto& v = lines[size_t(l)].vertices;
+    const size_t n = v.size();
+    for (size_t k = 0; k + 1 < n + (lines[size_t(l)].closed ? 1 : 0); ++k) {
+      const int a = v[k], b = v[(k + 1) % n];
+      grid.add(s.points[size_t(a)], s.points[size_t(b)], int(segments.size()));
+      segments.push_back({a, b, l});
+    }
+  }
+  // Lines that end at one corner meet there: between them lies a wedge (whose narrow end no
+  // size fits) or, where they share both ends, twin lines (stage 2 merges those), not a neck.
+  auto meet = [&](int l, int m) {
+    const auto &a = lines[size_t(l)], &b = lines[size_t(m)];
+    if (a.closed || b.closed || a.vertices.empty() || b.vertices.empty()) return false;
+    for (int c : {a.vertices.front(), a.vertices.back()})
+      if (c == b.vertices.front() || c == b.vertices.back()) return true;
+    return false;
+  };
+  int capped = 0;
+  std::vector<double> width;  // per point of the line: distance to the nearest other line, or -1
+  for (int l = 0; l < int(lines.size()); ++l) {
+    const auto& v = lines[size_t(l)].vertices;
+    const size_t n = v.size();
+    width.assign(n, -1.0);
+    for (size_t k = 0; k < n; ++k) {
+      const Point3& p = s.points[size_t(v[k])];
+      double nearest = reach;
+      grid.around(p, [&](int q) {
+        const Segment& g = segments[size_t(q)];
+        if (g.line == l) return;
+        const double d = distance_to_segment(p, s.points[size_t(g.a)], s.points[size_t(g.b)]);
+        if (d < nearest && d > 0 && !meet(l, g.line)) nearest = d;
+      });
+      if (nearest < reach) width[k] = nearest;
+    }
+    // A neck point needs a line neighbour that is one too: a lone point is where two lines touch
+    // in passing (the twin ridges of a noisy scan, which caps there pinched the front on the
+    // bunny), not a neck.
+    const bool closed = lines[size_t(l)].closed;
+    for (size_t k = 0; k < n; ++k) {
+      if (width[k] < 0) continue;
+      const bool before = k > 0 ? width[k - 1] >= 0 : closed && n > 1 && width[n - 1] >= 0;
+      const bool after = k + 1 < n ? width[k + 1] >= 0 : closed && n > 1 && width[0] >= 0;
+      if (!before && !after) continue;
+      const double h = std::max(kCap * width[k], kFloor * target);
+      double& c = cap[size_t(v[k])];
+      c = c > 0 ? std::min(c, h) : h;
+      ++capped;
+    }
+  }
+  return capped;
+}
+
+}  // namespace mr::remesh
