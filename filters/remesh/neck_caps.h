@@ -1,11 +1,11 @@
 // Size caps at necks between feature lines. Where two lines that do not meet pass closer than a
-// tenth of the target (two intersection circles of a sphere cluster nearly touching: the patch
+// 0.15 x the target (two intersection circles of a sphere cluster nearly touching: the patch
 // between them narrows to a neck 0.06 x target wide), the faces across the neck are as thin as
 // the neck whatever the points along the lines: 9-degree faces at 1% on a cluster of 50
 // spheres. Points on both lines about as far apart as the neck is wide fit across it; the caps
 // ask for them there, and the size field's gradation brings the size back up around. Lines that
 // end at one corner (a wedge between them, whose narrow end no size fits, or twin lines) and
-// lines that touch at a lone point in passing (noise) are left alone.
+// lines that touch in passing, at one or two points (noise), are left alone.
 #pragma once
 
 #include "features/feature_lines.h"
@@ -16,8 +16,8 @@
 namespace mr::remesh {
 
 /// Lowers `cap` (per surface point; 0 = no cap) at the points of `lines` that lie closer than
-/// 0.1 x `target` to another line, not counting lines that end at a corner their own line ends
-/// at too, and only where a neighbour along the point's line is such a point as well. The cap
+/// 0.15 x `target` to another line, not counting lines that end at a corner their own line ends
+/// at too, and only in runs of at least three such points in a row along the line. The cap
 /// is 1.7 x that distance, never below 0.05 x `target`. Returns the number of points capped.
 int cap_necks(const Surface& s, const std::vector<features::DiscreteLine>& lines, double target,
               std::vector<double>& cap);

@@ -448,13 +448,13 @@ def _sphere_with_two_nearly_touching_circles(gap):
 
 def test_pipeline_regrid_meshes_the_neck_between_two_nearly_touching_circles():
     # The neck is 0.002 wide, a twentieth of the 2% target: one row of faces across it had
-    # 7.9 degrees. Line points closer than 0.1 x target to another line cap the size at 1.7 x
-    # their distance (neck_caps.h). Measured: 24.5 degrees, 40 faces more (of 6,100).
+    # 7.9 degrees. Line points closer than 0.15 x target to another line cap the size at 1.7 x
+    # their distance (neck_caps.h). Measured: 30.2 degrees, 26 faces more (of 6,100).
     from meshregrid import pipeline_union
     ms = _sphere_with_two_nearly_touching_circles(0.004)
     r = pipeline_union.union(ms, remesh=True, target_percent=2.0)["remesh"]
     assert r["neck_points"] > 0 and r["unmeshed_sides"] == 0
-    assert angles(ms.current_mesh()).min() >= 20.0
+    assert angles(ms.current_mesh()).min() >= 25.0
     topo = ms.get_topological_measures()
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
@@ -462,7 +462,7 @@ def test_pipeline_regrid_meshes_the_neck_between_two_nearly_touching_circles():
 def test_fifty_sphere_cluster_regrid_keeps_its_necks_over_20_degrees():
     # Sphere clusters have necks wherever two spheres' circles on a third nearly touch: at 1%
     # the 50-sphere benchmark cluster's regrid had 9.0 degrees there; with the neck caps 20.8
-    # (116 faces more of 43,000).
+    # (126 faces more of 43,000).
     from meshregrid import pipeline_union
     ms = _benchmark_cluster(50)
     r = pipeline_union.union(ms, remesh=True, target_percent=1.0)["remesh"]
@@ -1184,21 +1184,21 @@ def test_regrid_slides_line_points_beside_the_wedges_of_a_joint_united_with_turn
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
-def test_pipeline_keeps_the_exact_unions_regrid_of_seed_8_once_its_necks_are_meshed():
-    # The same seed through the pipeline: the exact union's regrid had a 0.90-degree face across
-    # a neck between two lines, so the stepped union's (3.39 degrees, a wedge tip) stayed. With
-    # the neck caps the exact union's regrid reaches 5.67 and the pipeline keeps it.
+def test_pipeline_regrid_of_joint_with_turned_copies_meshes_its_necks():
+    # scripts/fuzz_union.py --models, seed 10 (cad/joint.off with turned copies) at 1%: before
+    # the neck caps the pipeline kept the stepped union's regrid at 9.34 degrees; with them the
+    # exact union's regrid, whose lines pass closer than 0.15 x target for stretches, reaches 20.88.
     for name in ("cad/joint.off", "cad/part.off", "cad/fandisk.obj", "organic/rocker-arm.obj"):
         shared_mesh(name)  # (skips where the shared models are missing)
     from meshregrid import pipeline_union
     fuzz_union = _fuzz_union()
-    _, parts = fuzz_union.models_case(8, fuzz_union.load_models())
+    _, parts = fuzz_union.models_case(10, fuzz_union.load_models())
     ms = pymeshlab.MeshSet()
     for v, f in parts:
         ms.add_mesh(pymeshlab.Mesh(v, f))
     r = pipeline_union.union(ms, remesh=True, target_percent=1.0)["remesh"]
-    assert r["from_exact_union"] and r["neck_points"] > 0 and r["unmeshed_sides"] == 0
-    assert angles(ms.current_mesh()).min() >= 5.0
+    assert r["neck_points"] > 0 and r["unmeshed_sides"] == 0
+    assert angles(ms.current_mesh()).min() >= 15.0
     topo = ms.get_topological_measures()
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 

@@ -1,6 +1,6 @@
-// Neck caps: line points closer than 0.1 x target to another line get caps of 1.7 x that
+// Neck caps: line points closer than 0.15 x target to another line get caps of 1.7 x that
 // distance (never below 0.05 x target); lines farther apart get none, and neither do two lines
-// that end at one corner (a wedge) nor a lone point where two lines touch in passing.
+// that end at one corner (a wedge) nor one or two points where two lines touch in passing.
 #include "remesh/neck_caps.h"
 
 #include <gtest/gtest.h>
@@ -39,7 +39,7 @@ void two_lines(double gap, int n, bool shared_start, std::vector<Point3>& points
 
 }  // namespace
 
-TEST(RemeshNeckCaps, LinesCloserThanATenthOfTheTargetAreCappedAtTheirDistance) {
+TEST(RemeshNeckCaps, LinesCloserThanTheNeckReachAreCappedAtTheirDistance) {
   std::vector<Point3> points;
   std::vector<features::DiscreteLine> lines;
   const double target = 0.1;
@@ -54,7 +54,7 @@ TEST(RemeshNeckCaps, LinesFartherApartGetNoCapAndVeryCloseOnesTheFloor) {
   std::vector<Point3> points;
   std::vector<features::DiscreteLine> lines;
   const double target = 0.1;
-  two_lines(0.012, 10, false, points, lines);  // 0.12 x target
+  two_lines(0.02, 10, false, points, lines);  // 0.2 x target
   std::vector<double> cap(points.size(), 0.0);
   EXPECT_EQ(remesh::cap_necks(points_only(points), lines, target, cap), 0);
   for (double c : cap) EXPECT_EQ(c, 0.0);
@@ -86,37 +86,37 @@ TEST(RemeshNeckCaps, LinesEndingAtOneCornerAreAWedgeAndGetNoCap) {
   for (double c : cap) EXPECT_EQ(c, 0.0);
 }
 
-TEST(RemeshNeckCaps, ALonePointTouchingAnotherLineIsNoNeck) {
-  // The second line stays 0.05 away (beyond 0.1 x target) but for one point that comes within
-  // 0.004 of the first: only that point and its nearest point on the first line are close, each
-  // without a close neighbour along its line.
+TEST(RemeshNeckCaps, TwoPointsTouchingAnotherLineAreNoNeckThreeAre) {
+  // The second line stays 0.05 away (beyond 0.15 x target) but for points that come within
+  // 0.004 of the first: one or two such points in a row are where two lines touch in passing.
   std::vector<Point3> points;
   std::vector<features::DiscreteLine> lines;
   two_lines(0.05, 10, false, points, lines);
-  points[size_t(lines[1].vertices[5])][1] = 0.004;
   std::vector<double> cap(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, 0.1, cap), 0);
-  // Two neighbouring points that close make a neck: both, and the first line's points beside them.
-  points[size_t(lines[1].vertices[6])][1] = 0.004;
+  for (int close : {5, 6}) {
+    points[size_t(lines[1].vertices[size_t(close)])][1] = 0.004;
+    cap.assign(points.size(), 0.0);
+    EXPECT_EQ(remesh::cap_necks(points_only(points), lines, 0.1, cap), 0) << close;
+  }
+  // Three in a row make a neck: those, and the first line's points across from them.
+  points[size_t(lines[1].vertices[7])][1] = 0.004;
   cap.assign(points.size(), 0.0);
-  EXPECT_GT(remesh::cap_necks(points_only(points), lines, 0.1, cap), 0);
-  EXPECT_NEAR(cap[size_t(lines[1].vertices[5])], 1.7 * 0.004, 1e-12);
-  EXPECT_NEAR(cap[size_t(lines[1].vertices[6])], 1.7 * 0.004, 1e-12);
+  EXPECT_GT(remesh::cap_necks(points_only(points), lines, 0.1, cap), 3);
+  for (int k : {5, 6, 7}) EXPECT_NEAR(cap[size_t(lines[1].vertices[size_t(k)])], 1.7 * 0.004, 1e-12) << k;
+  EXPECT_NEAR(cap[size_t(lines[0].vertices[6])], 1.7 * 0.004, 1e-12);
   EXPECT_EQ(cap[size_t(lines[1].vertices[2])], 0.0);
 }
 
-TEST(RemeshNeckCaps, AClosedLineCountsItsNeighboursAcrossItsSeam) {
-  // A closed square loop whose last and first points lie 0.004 from a straight line beside it:
-  // they are neighbours along the loop, so both are a neck.
-  // Loop: starts at (0.2, 0.004), goes round, ends at (0.1, 0.004); the line runs along y = 0.
-  const std::vector<Point3> points = {{0.2, 0.004, 0}, {0.9, 0.3, 0}, {0.5, 0.9, 0}, {0.0, 0.5, 0}, {0.1, 0.004, 0},
-            {-1, 0, 0}, {2, 0, 0}};
+TEST(RemeshNeckCaps, AClosedLineCountsARunAcrossItsSeam) {
+  // A closed loop whose last two and first points lie 0.004 from a straight line beside it:
+  // consecutive along the loop, across its seam, they make a run of three.
+  const std::vector<Point3> points = {{0.2, 0.004, 0}, {0.9, 0.3, 0}, {0.5, 0.9, 0}, {0.0, 0.5, 0},
+                                      {0.0, 0.004, 0}, {0.1, 0.004, 0}, {-1, 0, 0},   {2, 0, 0}};
   std::vector<features::DiscreteLine> lines(2);
-  lines[0].vertices = {0, 1, 2, 3, 4};
+  lines[0].vertices = {0, 1, 2, 3, 4, 5};
   lines[0].closed = true;
-  lines[1].vertices = {5, 6};
+  lines[1].vertices = {6, 7};
   std::vector<double> cap(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, 0.1, cap), 2);
-  EXPECT_NEAR(cap[0], 1.7 * 0.004, 1e-12);
-  EXPECT_NEAR(cap[4], 1.7 * 0.004, 1e-12);
+  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, 0.1, cap), 3);
+  for (int v : {0, 4, 5}) EXPECT_NEAR(cap[size_t(v)], 1.7 * 0.004, 1e-12) << v;
 }
