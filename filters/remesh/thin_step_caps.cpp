@@ -150,7 +150,7 @@ std::pair<double, double> faces_before_and_added(const Surface& surface, const S
 
 }  // namespace
 
-SizeField size_field_with_thin_steps(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
+SizeField size_field_with_steps_and_necks(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
                                      const SizeParams& sp, double target, int* thin_step_faces,
                                      const std::vector<double>* neck_cap, int* neck_points) {
   if (thin_step_faces) *thin_step_faces = 0;

@@ -36,7 +36,7 @@ int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& rid
 /// budget of its own measured against the field with the steps: over it the necks are dropped
 /// and the steps stay. `neck_points` (optional) gets the points the necks capped (0: none, or
 /// over that budget).
-SizeField size_field_with_thin_steps(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
+SizeField size_field_with_steps_and_necks(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
                                      const SizeParams& sp, double target, int* thin_step_faces = nullptr,
                                      const std::vector<double>* neck_cap = nullptr, int* neck_points = nullptr);
 
