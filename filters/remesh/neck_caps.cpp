@@ -1,9 +1,10 @@
 #include "remesh/neck_caps.h"
 
+#include "common/segment_geometry.h"
+#include "common/uniform_grid.h"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <unordered_map>
 
 namespace mr::remesh {
 
@@ -23,53 +24,6 @@ constexpr double kFloor = 0.05, kCap = 1.7;
 // other), for no better angle.
 constexpr size_t kMinRun = 3;
 
-double distance_to_segment(const Point3& p, const Point3& a, const Point3& b) {
-  const Point3 ab = b - a;
-  const double len2 = ab * ab;
-  const double t = len2 > 0 ? std::clamp(((p - a) * ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + ab * t)).Norm();
-}
-
-/// Segments filed in the cells their sample points fall in: every segment passing within
-/// half a cell of a point has a sample in one of the 27 cells around it.
-class SegmentGrid {
-public:
-  explicit SegmentGrid(double cell) : cell_(cell) {}
-  void add(const Point3& a, const Point3& b, int segment) {
-    // Samples a quarter cell apart: the one nearest any point of the segment is within an
-    // eighth of a cell of it.
-    const int n = std::max(1, int(std::ceil((b - a).Norm() / (0.25 * cell_))));
-    int64_t last = 0;
-    for (int k = 0; k <= n; ++k) {
-      const int64_t c = key(a + (b - a) * (double(k) / n));
-      if (k > 0 && c == last) continue;
-      std::vector<int>& list = cells_[c];
-      if (list.empty() || list.back() != segment) list.push_back(segment);
-      last = c;
-    }
-  }
-  template <class Visit>
-  void around(const Point3& p, Visit&& visit) const {
-    const int64_t i = index(p[0]), j = index(p[1]), k = index(p[2]);
-    for (int64_t di = -1; di <= 1; ++di)
-      for (int64_t dj = -1; dj <= 1; ++dj)
-        for (int64_t dk = -1; dk <= 1; ++dk) {
-          const auto it = cells_.find(pack(i + di, j + dj, k + dk));
-          if (it != cells_.end())
-            for (int s : it->second) visit(s);
-        }
-  }
-
-private:
-  int64_t index(double x) const { return int64_t(std::floor(x / cell_)); }
-  static int64_t pack(int64_t i, int64_t j, int64_t k) {
-    return (i & 0x1FFFFF) | ((j & 0x1FFFFF) << 21) | ((k & 0x1FFFFF) << 42);
-  }
-  int64_t key(const Point3& p) const { return pack(index(p[0]), index(p[1]), index(p[2])); }
-  double cell_;
-  std::unordered_map<int64_t, std::vector<int>> cells_;
-};
-
 }  // namespace
 
 int cap_necks(const Surface& s, const std::vector<features::DiscreteLine>& lines, double target,
@@ -80,13 +34,15 @@ int cap_necks(const Surface& s, const std::vector<features::DiscreteLine>& lines
     int a, b, line;
   };
   std::vector<Segment> segments;
-  SegmentGrid grid(2 * reach);
+  // Each segment filed in the cells within `reach` of it: a point's own cell lists every
+  // segment that close.
+  UniformGrid grid(reach);
   for (int l = 0; l < int(lines.size()); ++l) {
     const auto& v = lines[size_t(l)].vertices;
     const size_t n = v.size();
     for (size_t k = 0; k + 1 < n + (lines[size_t(l)].closed ? 1 : 0); ++k) {
       const int a = v[k], b = v[(k + 1) % n];
-      grid.add(s.points[size_t(a)], s.points[size_t(b)], int(segments.size()));
+      grid.insert_segment(int(segments.size()), s.points[size_t(a)], s.points[size_t(b)], reach);
       segments.push_back({a, b, l});
     }
   }
@@ -108,10 +64,10 @@ int cap_necks(const Surface& s, const std::vector<features::DiscreteLine>& lines
     for (size_t k = 0; k < n; ++k) {
       const Point3& p = s.points[size_t(v[k])];
       double nearest = reach;
-      grid.around(p, [&](int q) {
+      grid.visit(p, 0.0, [&](int q) {
         const Segment& g = segments[size_t(q)];
         if (g.line == l) return;
-        const double d = distance_to_segment(p, s.points[size_t(g.a)], s.points[size_t(g.b)]);
+        const double d = point_segment_distance(p, s.points[size_t(g.a)], s.points[size_t(g.b)]);
         if (d < nearest && d > 0 && !meet(l, g.line)) nearest = d;
       });
       if (nearest < reach) width[k] = nearest;
