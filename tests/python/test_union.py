@@ -1133,6 +1133,26 @@ def _fuzz_union():
     return fuzz_union
 
 
+def _models_case_layers(seed):
+    """fuzz_union.py --models case `seed`, one layer per body (skips where the shared models
+    are missing)."""
+    for name in ("cad/joint.off", "cad/part.off", "cad/fandisk.obj", "organic/rocker-arm.obj"):
+        shared_mesh(name)
+    fuzz_union = _fuzz_union()
+    _, parts = fuzz_union.models_case(seed, fuzz_union.load_models())
+    ms = pymeshlab.MeshSet()
+    for v, f in parts:
+        ms.add_mesh(pymeshlab.Mesh(v, f))
+    return ms
+
+
+def _regrid_as_the_pipeline(ms, percent=1.0):
+    """The current union regridded with the pipeline's remesh parameters (its lines kept)."""
+    length = pymeshlab.PercentageValue(percent)
+    return ms.meshing_advancing_front_remesh(target_length=length, min_line_length=length, improvement_iterations=5,
+                                             use_selected_edges_as_ridges=True)
+
+
 @pytest.mark.parametrize("seed", [0, 4])
 def test_bug_regrid_of_a_union_whose_sliver_step_crumpled_a_flat_side_was_not_manifold(seed):
     # scripts/fuzz_union.py --models, seeds 0 and 4: cad/joint.off and two turned copies, one
@@ -1142,17 +1162,9 @@ def test_bug_regrid_of_a_union_whose_sliver_step_crumpled_a_flat_side_was_not_ma
     # at 1%, regridded from the stepped union: seed 4 had 15 points not manifold and faces
     # without area (13 from the pipeline), seed 0 none before crumples were dropped and 4 while
     # a crumple had to turn 120 degrees against every neighbour; now none.
-    for name in ("cad/joint.off", "cad/part.off", "cad/fandisk.obj", "organic/rocker-arm.obj"):
-        shared_mesh(name)  # (skips where the shared models are missing)
-    fuzz_union = _fuzz_union()
-    _, parts = fuzz_union.models_case(seed, fuzz_union.load_models())
-    ms = pymeshlab.MeshSet()
-    for v, f in parts:
-        ms.add_mesh(pymeshlab.Mesh(v, f))
+    ms = _models_case_layers(seed)
     unite(ms, bodies=LAYERS)
-    length = pymeshlab.PercentageValue(1.0)
-    r = ms.meshing_advancing_front_remesh(target_length=length, min_line_length=length, improvement_iterations=5,
-                                          use_selected_edges_as_ridges=True)
+    r = _regrid_as_the_pipeline(ms)
     assert r["unmeshed_sides"] == 0
     topo = ms.get_topological_measures()
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
@@ -1166,17 +1178,9 @@ def test_regrid_slides_line_points_beside_the_wedges_of_a_joint_united_with_turn
     # degrees, which no regrid keeping the lines can raise). Off the tips the smallest angle was
     # 4.54 degrees while a tip's fixed angle held the line points beside it; they slide now:
     # measured 13.93 (10.50 when this test came).
-    for name in ("cad/joint.off", "cad/part.off", "cad/fandisk.obj", "organic/rocker-arm.obj"):
-        shared_mesh(name)  # (skips where the shared models are missing)
-    fuzz_union = _fuzz_union()
-    _, parts = fuzz_union.models_case(8, fuzz_union.load_models())
-    ms = pymeshlab.MeshSet()
-    for v, f in parts:
-        ms.add_mesh(pymeshlab.Mesh(v, f))
+    ms = _models_case_layers(8)
     unite(ms, bodies=LAYERS)
-    length = pymeshlab.PercentageValue(1.0)
-    r = ms.meshing_advancing_front_remesh(target_length=length, min_line_length=length, improvement_iterations=5,
-                                          use_selected_edges_as_ridges=True)
+    r = _regrid_as_the_pipeline(ms)
     assert r["unmeshed_sides"] == 0 and r["wedge_tips"] > 0
     assert r["min_angle"] == pytest.approx(min(r["min_wedge_angle"], r["min_angle_off_wedges"]), abs=1e-9)
     assert r["min_angle_off_wedges"] >= 9.0
@@ -1188,14 +1192,8 @@ def test_pipeline_regrid_of_joint_with_turned_copies_meshes_its_necks():
     # scripts/fuzz_union.py --models, seed 10 (cad/joint.off with turned copies) at 1%: before
     # the neck caps the pipeline kept the stepped union's regrid at 9.34 degrees; with them the
     # exact union's regrid, whose lines pass closer than 0.15 x target for stretches, reaches 20.88.
-    for name in ("cad/joint.off", "cad/part.off", "cad/fandisk.obj", "organic/rocker-arm.obj"):
-        shared_mesh(name)  # (skips where the shared models are missing)
     from meshregrid import pipeline_union
-    fuzz_union = _fuzz_union()
-    _, parts = fuzz_union.models_case(10, fuzz_union.load_models())
-    ms = pymeshlab.MeshSet()
-    for v, f in parts:
-        ms.add_mesh(pymeshlab.Mesh(v, f))
+    ms = _models_case_layers(10)
     r = pipeline_union.union(ms, remesh=True, target_percent=1.0)["remesh"]
     assert r["neck_points"] > 0 and r["unmeshed_sides"] == 0
     assert angles(ms.current_mesh()).min() >= 15.0
