@@ -172,7 +172,7 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
       if (!has_corner(r_.faces[f], v)) propose(f, w, w, target);
   if (!proposed_in_slab()) return false;
   if (!cover_unchanged(v, moved ? w : -1)) {
-    if (replaces_touching_face() || !near_and_clear(std::max(norm(sub3(target, P(v))), norm(p)))) return false;
+    if (replaces_touching_face() || folds_more() || !near_and_clear(std::max(norm(sub3(target, P(v))), norm(p)))) return false;
     keep_cut_distance();
   }
   const double budget_before = volume_budget_;

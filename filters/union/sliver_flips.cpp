@@ -139,7 +139,7 @@ bool Collapser::attempt_flip(int f, int z) {
   new_pos_ = {{P(u), P(d), P(c)}, {P(d), P(v), P(c)}};
   // A flat convex quad (CAD plates) covers the same place after the flip: nothing to check.
   if (!flat_convex_quad(P(u), P(v), P(c), P(d))) {
-    if (replaces_touching_face() || !near_and_clear(1e300, true)) return false;
+    if (replaces_touching_face() || folds_more() || !near_and_clear(1e300, true)) return false;
     keep_cut_distance();
   }
   const FlipUndo undo = flip(f, g, u, v, c, d);

@@ -1,13 +1,16 @@
-// The order of the sliver step: the flat flips, then two rounds (volume-neutral moves first)
-// of passes over the slivers, worst first, until a pass changes nothing.
+// The order of the sliver step: the flat flips, then three rounds (volume-neutral moves first,
+// moves that fold the surface last) of passes over the slivers, worst first, until a pass
+// changes nothing.
 #include "union/sliver_collapser.h"
 
 namespace mr::surface_union::slivers {
 
 int Collapser::run(double threshold, const std::vector<char>* seed, const std::vector<double>* cut_distance) {
   threshold_ = threshold;
-  // Two rounds: first only moves that give the volume back (a budget of rounding), so
-  // the budget is not spent on the worst slivers while cheaper fixes exist; then the rest.
+  // Three rounds: first only moves that give the volume back (a budget of rounding), so
+  // the budget is not spent on the worst slivers while cheaper fixes exist; then the rest
+  // but those that fold the surface beside the lines (folds_more); then those too, for the
+  // slivers nothing else mends.
   const double budget = volume_budget_;
   const double rounding = std::min(budget, 1e-12 * budget_scale_);
   changed_at_.assign(r_.vertices.size(), 0);
@@ -26,15 +29,19 @@ int Collapser::run(double threshold, const std::vector<char>* seed, const std::v
     for (size_t x = 0; x < flat_seed.size(); ++x) flat_seed[x] = flat_seed[x] || changed_[x];
     seed = &flat_seed;
   }
-  for (int round = 0; round < 2; ++round) {
+  fold_refused_at_.clear();
+  for (int round = 0; round < 3; ++round) {
+    if (round == 2 && fold_refused_at_.empty()) break;
     ++clock_;
     removal_refused_at_.assign(r_.vertices.size(), -1);
     slide_refused_at_.assign(r_.vertices.size(), -1);
     collapse_refused_at_.clear();
     if (round == 0) volume_budget_ = rounding;
-    else volume_budget_ = budget - (rounding - volume_budget_);
-    run_passes(threshold, seed);
+    else if (round == 1) volume_budget_ = budget - (rounding - volume_budget_);
+    allow_folds_ = round == 2;
+    run_passes(threshold, allow_folds_ ? &fold_refused_at_ : seed);
   }
+  allow_folds_ = false;
   return collapses_;
 }
 

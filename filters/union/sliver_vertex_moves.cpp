@@ -109,8 +109,9 @@ bool Collapser::attempt_removal(int v) {
     new_ids_.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});
     new_pos_.push_back({at[t[0]], at[t[1]], at[t[2]]});
   }
+  if (ld == 2) new_line_edge_ = ekey(ring[forced[0]], ring[forced[1]]);
   if (!cover_unchanged(v)) {
-    if (replaces_touching_face() || !stays_near()) return refuse();
+    if (replaces_touching_face() || folds_more() || !stays_near()) return refuse();
     if (!near_and_clear(1e300)) return false;
     keep_cut_distance();
   }
@@ -311,7 +312,7 @@ bool Collapser::move_vertex(int x, const std::vector<int>& fx, const V3& at) {
   // further than the bound: then the patches are compared, unless they cover the same).
   if (!cover_unchanged(x)) {
     const double moved = norm(sub3(at, P(x)));
-    if (replaces_touching_face() || !near_and_clear(moved, true, moved)) return false;
+    if (replaces_touching_face() || folds_more() || !near_and_clear(moved, true, moved)) return false;
     keep_cut_distance();
   }
   place(x, at);
