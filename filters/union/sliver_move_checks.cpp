@@ -21,12 +21,6 @@ bool Collapser::folds_more() {
   if (allow_folds_) return false;
   for (int f : replaced_)
     if (min_angle(f) < kMayFoldBelow) return false;
-  auto refused = [&] {  // the last round starts at the corners of the moves refused here
-    if (fold_refused_at_.empty()) fold_refused_at_.assign(r_.vertices.size(), 0);
-    for (int f : replaced_)
-      for (int x : r_.faces[f]) fold_refused_at_[size_t(x)] = 1;
-    return true;
-  };
   auto unit = [](const V3& a, const V3& b, const V3& c) {
     V3 n = cross(sub3(b, a), sub3(c, a));
     const double l = norm(n);
@@ -35,47 +29,56 @@ bool Collapser::folds_more() {
     return n;
   };
   auto old_normal = [&](int f) { return unit(P(r_.faces[f][0]), P(r_.faces[f][1]), P(r_.faces[f][2])); };
-  // Before: the smallest cosine at the replaced faces' sides off the lines.
-  double before = 1;
+  // After: a side off the lines where a new face meets another new face or an old neighbour
+  // at more than a crease angle (the common answer is none: the rest is skipped).
+  if (fold_mark_.size() != r_.faces.size()) fold_mark_.assign(r_.faces.size(), 0);
+  const int stamp = ++fold_stamp_;
+  for (int f : replaced_) fold_mark_[size_t(f)] = stamp;
+  auto folds_after = [&] {
+    for (size_t i = 0; i < new_ids_.size(); ++i) {
+      const auto& t = new_ids_[i];
+      const V3 n = unit(new_pos_[i][0], new_pos_[i][1], new_pos_[i][2]);
+      for (int z = 0; z < 3; ++z) {
+        const int a = t[z], b = t[(z + 1) % 3];
+        if (line_after_move(a, b)) continue;
+        bool found = false;
+        for (size_t j = 0; j < new_ids_.size() && !found; ++j) {
+          if (j == i) continue;
+          const auto& u = new_ids_[j];
+          for (int y = 0; y < 3 && !found; ++y)
+            if (u[y] == b && u[(y + 1) % 3] == a) {
+              found = true;
+              if (j > i && dot(n, unit(new_pos_[j][0], new_pos_[j][1], new_pos_[j][2])) < kCreaseCos) return true;
+            }
+        }
+        if (found) continue;
+        for (int h : vf_[b]) {
+          if (!alive_[h] || fold_mark_[size_t(h)] == stamp) continue;
+          const auto& u = r_.faces[h];
+          for (int y = 0; y < 3; ++y)
+            if (u[y] == b && u[(y + 1) % 3] == a && dot(n, old_normal(h)) < kCreaseCos) return true;
+        }
+      }
+    }
+    return false;
+  };
+  if (!folds_after()) return false;
+  // Before: folded already at a side of the replaced faces off the lines, and the other
+  // checks decide.
   for (int f : replaced_) {
     const auto& t = r_.faces[f];
     for (int z = 0; z < 3; ++z) {
       const int a = t[z], b = t[(z + 1) % 3];
       if (line_.count(ekey(a, b))) continue;
       const int g = face_across(f, a, b);
-      if (g >= 0) before = std::min(before, dot(old_normal(f), old_normal(g)));
+      if (g >= 0 && dot(old_normal(f), old_normal(g)) < kCreaseCos) return false;
     }
   }
-  if (before < kCreaseCos) return false;  // folded already: the other checks decide
-  if (fold_mark_.size() != r_.faces.size()) fold_mark_.assign(r_.faces.size(), 0);
-  const int stamp = ++fold_stamp_;
-  for (int f : replaced_) fold_mark_[size_t(f)] = stamp;
-  for (size_t i = 0; i < new_ids_.size(); ++i) {
-    const auto& t = new_ids_[i];
-    const V3 n = unit(new_pos_[i][0], new_pos_[i][1], new_pos_[i][2]);
-    for (int z = 0; z < 3; ++z) {
-      const int a = t[z], b = t[(z + 1) % 3];
-      if (line_after_move(a, b)) continue;
-      bool found = false;
-      for (size_t j = 0; j < new_ids_.size() && !found; ++j) {
-        if (j == i) continue;
-        const auto& u = new_ids_[j];
-        for (int y = 0; y < 3 && !found; ++y)
-          if (u[y] == b && u[(y + 1) % 3] == a) {
-            found = true;
-            if (j > i && dot(n, unit(new_pos_[j][0], new_pos_[j][1], new_pos_[j][2])) < kCreaseCos) return refused();
-          }
-      }
-      if (found) continue;
-      for (int h : vf_[b]) {
-        if (!alive_[h] || fold_mark_[size_t(h)] == stamp) continue;
-        const auto& u = r_.faces[h];
-        for (int y = 0; y < 3; ++y)
-          if (u[y] == b && u[(y + 1) % 3] == a && dot(n, old_normal(h)) < kCreaseCos) return refused();
-      }
-    }
-  }
-  return false;
+  // Refused: the last round starts at the corners of the moves refused here.
+  if (fold_refused_at_.empty()) fold_refused_at_.assign(r_.vertices.size(), 0);
+  for (int f : replaced_)
+    for (int x : r_.faces[f]) fold_refused_at_[size_t(x)] = 1;
+  return true;
 }
 
 void Collapser::keep_cut_surface() {
