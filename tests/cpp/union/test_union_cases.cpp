@@ -36,6 +36,25 @@ void expect_closed(const Result& r) {
   EXPECT_EQ(w.misoriented_edges, 0);
 }
 
+/// n unit icospheres (subdivision `subdiv`) at random centres in a cube of side 1.8 n^(1/3)
+/// (the benchmark's density), from a linear congruential generator started at `seed`.
+std::vector<Body> random_spheres(int n, int subdiv, uint64_t seed) {
+  TriMesh m;
+  test::sphere(m, subdiv);
+  uint64_t state = seed;
+  auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) / double(1ull << 53);
+  };
+  const double side = 1.8 * std::cbrt(double(n));
+  std::vector<Body> bodies;
+  for (int i = 0; i < n; ++i) {
+    const double z = side * next(), y = side * next(), x = side * next();  // (z drawn first: the order the tests were measured in)
+    bodies.push_back(make_body(m, x, y, z));
+  }
+  return bodies;
+}
+
 Body cube_body(int n, double dx, double dy, double dz, double scale = 1) {
   TriMesh m;
   test::cube(m, n);
@@ -490,16 +509,7 @@ TEST(UnionCases, ManySliversAreTreatedInTwoHalvesWithTheSameResultOnAnyThreadCou
   // halves left some. Measured: smallest angle 7.98 deg (0.006 before the step), 2268
   // collapses, volume -5.3e-7, closed, no crossing faces, the same output on one thread
   // as on two.
-  TriMesh m;
-  test::sphere(m, 2);
-  std::vector<Body> bodies;
-  uint64_t state = 12345;
-  auto next = [&] {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return double(state >> 11) / double(1ull << 53);
-  };
-  const double side = 1.8 * std::cbrt(100.0);
-  for (int i = 0; i < 100; ++i) bodies.push_back(make_body(m, side * next(), side * next(), side * next()));
+  const std::vector<Body> bodies = random_spheres(100, 2, 12345);
   setenv("MESHREGRID_THREADS", "1", 1);
   const Result one = unite(bodies);
   setenv("MESHREGRID_THREADS", "2", 1);
@@ -559,16 +569,7 @@ TEST(UnionCases, SliverStepFoldsNoEdgeBesideTheLinesOfASphereCluster) {
   // has no edge off the lines folded by more than 30 degrees; before moves that fold waited
   // for a last round (folds_more), collapses and relocations beside the lines left such folds,
   // which a regrid keeping the lines takes for ridges.
-  TriMesh m;
-  test::sphere(m, 3);
-  std::vector<Body> bodies;
-  uint64_t state = 2024;
-  auto next = [&] {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return double(state >> 11) / double(1ull << 53);
-  };
-  const double side = 1.8 * std::cbrt(10.0);
-  for (int i = 0; i < 10; ++i) bodies.push_back(make_body(m, side * next(), side * next(), side * next()));
+  const std::vector<Body> bodies = random_spheres(10, 3, 2024);
   const Result raw = unite(bodies, 0.0);
   const Result stepped = unite(bodies);
   ASSERT_GT(raw.intersection_edges, 0);
