@@ -415,6 +415,7 @@ private:
   int renamed_from_ = -1, renamed_to_ = -1;  // the proposed move's collapse: corner `from` becomes `to`
   std::pair<int, int> new_line_edge_{-1, -1};  // a line edge the move makes (a removal's)
   std::vector<int> fold_mark_;
+  std::vector<V3> new_normals_;  // folds_more's scratch
   int fold_stamp_ = 0;
   /// The move's checks but the touching one: near_cut_surface(cut_pointwise), after
   /// stays_near(near_pointwise) when `compare_patches`, and stays_clear(), whose face

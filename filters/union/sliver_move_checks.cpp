@@ -34,10 +34,13 @@ bool Collapser::folds_more() {
   if (fold_mark_.size() != r_.faces.size()) fold_mark_.assign(r_.faces.size(), 0);
   const int stamp = ++fold_stamp_;
   for (int f : replaced_) fold_mark_[size_t(f)] = stamp;
+  std::vector<V3>& normals = new_normals_;  // each new face's, once (every side reads two)
+  normals.clear();
+  for (const auto& q : new_pos_) normals.push_back(unit(q[0], q[1], q[2]));
   auto folds_after = [&] {
     for (size_t i = 0; i < new_ids_.size(); ++i) {
       const auto& t = new_ids_[i];
-      const V3 n = unit(new_pos_[i][0], new_pos_[i][1], new_pos_[i][2]);
+      const V3& n = normals[i];
       for (int z = 0; z < 3; ++z) {
         const int a = t[z], b = t[(z + 1) % 3];
         if (line_after_move(a, b)) continue;
@@ -48,7 +51,7 @@ bool Collapser::folds_more() {
           for (int y = 0; y < 3 && !found; ++y)
             if (u[y] == b && u[(y + 1) % 3] == a) {
               found = true;
-              if (j > i && dot(n, unit(new_pos_[j][0], new_pos_[j][1], new_pos_[j][2])) < kCreaseCos) return true;
+              if (j > i && dot(n, normals[j]) < kCreaseCos) return true;
             }
         }
         if (found) continue;

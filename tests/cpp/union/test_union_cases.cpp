@@ -4,6 +4,7 @@
 #include "union/self_intersection.h"
 #include "union/surface_union.h"
 #include "union/triangle_angles.h"
+#include "union/vec3.h"
 #include "union_checks.h"
 
 #include <gtest/gtest.h>
@@ -544,21 +545,15 @@ int folds_off_lines(const Result& r, double degrees) {
       if (r.line_edge[f][z]) on_line.insert(e);
     }
   auto normal = [&](int f) {
-    const auto& p = r.vertices;
     const auto& t = r.faces[f];
-    std::array<double, 3> u, v, n;
-    for (int k = 0; k < 3; ++k) { u[k] = p[t[1]][k] - p[t[0]][k]; v[k] = p[t[2]][k] - p[t[0]][k]; }
-    n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (double& c : n) c /= l;
-    return n;
+    const V3 n = cross(sub3(r.vertices[t[1]], r.vertices[t[0]]), sub3(r.vertices[t[2]], r.vertices[t[0]]));
+    const double l = norm(n);
+    return V3{n[0] / l, n[1] / l, n[2] / l};
   };
+  const double cos_limit = std::cos(degrees * M_PI / 180);
   int folds = 0;
-  for (const auto& [e, fs] : faces_at) {
-    if (fs.size() != 2 || on_line.count(e)) continue;
-    const auto n0 = normal(fs[0]), n1 = normal(fs[1]);
-    if (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] < std::cos(degrees * M_PI / 180)) ++folds;
-  }
+  for (const auto& [e, fs] : faces_at)
+    if (fs.size() == 2 && !on_line.count(e) && dot(normal(fs[0]), normal(fs[1])) < cos_limit) ++folds;
   return folds;
 }
 
