@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <cmath>
 #include <set>
 
 namespace mr::remesh {
@@ -31,11 +32,32 @@ double distance_to_polyline(const Point3& p, const std::vector<Point3>& to) {
   return best;
 }
 
-// Integral of 1/h along each segment (h linear along the segment, trapezoid of the ends).
+// Integral of 1/h along each segment, h linear from sizes[j] to sizes[j + 1]:
+// L ln(h1 / h0) / (h1 - h0), or L / h where the two are nearly the same.
+double normalised_length(double length, double h0, double h1) {
+  h0 = std::max(h0, 1e-300);
+  h1 = std::max(h1, 1e-300);
+  const double r = h1 / h0;
+  if (std::fabs(r - 1) < 1e-6) return length / (0.5 * (h0 + h1));
+  return length * std::log(r) / (h1 - h0);
+}
+
 std::vector<double> normalised_lengths(const std::vector<double>& lengths, const std::vector<double>& sizes) {
   std::vector<double> out(lengths.size());
-  for (size_t j = 0; j < lengths.size(); ++j) out[j] = lengths[j] / std::max(0.5 * (sizes[j] + sizes[j + 1]), 1e-300);
+  for (size_t j = 0; j < lengths.size(); ++j) out[j] = normalised_length(lengths[j], sizes[j], sizes[j + 1]);
   return out;
+}
+
+// Where along a segment (0..1) its normalised length reaches the share `t` (0..1) of its whole,
+// h linear from h0 to h1: points spaced evenly in it follow the size, as a long input edge from a
+// capped corner to an uncapped one asks (evenly along the edge, the faces at the capped end were
+// as long as at the other: rabbit.obj's ear tips at 2%, 26 degrees).
+double share_along_segment(double t, double h0, double h1) {
+  h0 = std::max(h0, 1e-300);
+  h1 = std::max(h1, 1e-300);
+  const double r = h1 / h0;
+  if (std::fabs(r - 1) < 1e-6) return t;
+  return std::clamp((std::pow(r, t) - 1) / (r - 1), 0.0, 1.0);
 }
 
 // A patch no element of the local size fits in: two open lines between the same two corners
@@ -237,11 +259,13 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
     if (!staggered)
       for (int i = 0; i <= n; ++i) position.push_back(double(i) / n * total);
     auto middle = [&](int i) { return staggered ? 0.5 * (position[i] + position[i + 1]) : (i + 0.5) / n * total; };
-    // Input segment and point at normalised arc length x.
+    // Input segment and point at normalised arc length x (staggered positions are projections,
+    // linear along their segment).
     auto locate_on_line = [&](double x, size_t& seg, double& u) {
       seg = std::upper_bound(cumulative.begin(), cumulative.end(), x) - cumulative.begin();
       seg = std::clamp<size_t>(seg, 1, segs) - 1;
       u = w[seg] > 0 ? std::clamp((x - cumulative[seg]) / w[seg], 0.0, 1.0) : 0.0;
+      if (!staggered) u = share_along_segment(u, sizes[seg], sizes[seg + 1]);
     };
     // Points: the ends are corners (or the start of a closed line), the rest lie on the polyline.
     std::vector<int> pts(n + 1);

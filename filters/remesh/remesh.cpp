@@ -312,7 +312,7 @@ Result remesh_once(const TriMesh& given, const Params& params, SliverChoice choi
   std::vector<double> neck_cap(surface.points.size(), 0.0);
   cap_necks(surface, fr.lines, params.target_length, neck_cap);
   const SizeField size = size_field_with_steps_and_necks(surface, fr.ridge, sp, params.target_length, &result.thin_step_faces,
-                                                    &neck_cap, &result.neck_points);
+                                                    &neck_cap, &result.neck_points, &result.narrow_rim_faces);
   const SurfaceLocator locator(surface, params.target_length);
 
   progress(params, 12, "Discretising feature lines");

@@ -50,6 +50,7 @@ struct Result {
   int merged_lines = 0;         ///< lines merged with a nearly coincident twin (sliver patch dropped)
   int thin_patches = 0;         ///< strips narrower than the elements, given one layer of faces
   int thin_step_faces = 0;      ///< input faces of thin steps whose corners capped the size (thin_step_caps.h)
+  int narrow_rim_faces = 0;     ///< input faces across narrow rims and slots whose corners capped the size (thin_step_caps.h)
   int neck_points = 0;          ///< line points at necks between lines that capped the size (neck_caps.h)
   int unmeshed_sides = 0;       ///< front sides that could not be closed (0 = complete)
   int unmeshed_patches = 0;     ///< patches with unmeshed sides

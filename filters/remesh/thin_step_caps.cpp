@@ -10,6 +10,14 @@ namespace {
 
 // Steps lower than this x target are thin; caps never go below kFloor x target.
 constexpr double kThin = 0.1, kFloor = 0.05;
+// Rims and slots narrower than this x target are capped: 1.7 x their width is then under the
+// target, and a layer of target-sized faces across them is under 30 degrees.
+constexpr double kNarrowRim = 0.55;
+// A rim or slot: the faces beyond its two lines turned from each other by more than 90 degrees
+// (a plate's edge, 180; the narrow facet between the flat side and the curved side of
+// rabbit.obj's ears, 144). Strips between faces turned less (chamfers, ledges) are left to the
+// thin-step rules.
+constexpr double kRimCos = 0.0;
 // Points on the two lines right across from each other (the front's usual layout) make right
 // triangles with legs of the height and the spacing: 1.7 x the height gives 30.5 degrees.
 constexpr double kCap = 1.7;
@@ -25,10 +33,10 @@ constexpr double kCosAligned = 0.866;
 // regridded at 2% was left with 120 open sides).
 constexpr double kCosSeam = 0.99985;
 
-}  // namespace
+enum class Strip { kStep, kRim };
 
-int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& ridge, double target,
-                   std::vector<double>& cap) {
+int cap_strips(const Surface& s, const std::vector<std::array<bool, 3>>& ridge, double target, Strip kind,
+               std::vector<double>& cap) {
   const int nf = int(s.faces.size());
   // Per vertex, the ridge sides of faces there: (the side's other end, the face). A ridge edge
   // is listed once from each face along it.
@@ -71,7 +79,7 @@ int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& rid
     const Point3 &a = s.points[size_t(t[size_t(z)])], &b = s.points[size_t(t[size_t((z + 1) % 3)])];
     const double side = (b - a).Norm();
     const double height = side > 0 ? ((b - a) ^ (s.points[size_t(apex)] - a)).Norm() / side : 0.0;
-    if (!(height > 0 && height < kThin * target)) return -1.0;
+    if (!(height > 0 && height < (kind == Strip::kStep ? kThin : kNarrowRim) * target)) return -1.0;
     // Beyond the ridge at the apex (a face of another patch), the surface must go on as beyond
     // this side: a ledge (both beyond faces facing the same way, this face turned from them), or
     // a strip between a crease and a seam in a flat side, the seam on either line (as where two
@@ -83,7 +91,8 @@ int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& rid
     for (const auto& [other, g] : ridges_at[size_t(apex)]) {
       if (g == beyond || s.group[size_t(g)] == s.group[size_t(f)]) continue;
       const Point3& ng = s.face_normal[size_t(g)];
-      step = (ng * nb > kCosAligned && !flat(nb)) || (flat(ng) != flat(nb));
+      if (kind == Strip::kRim) step = ng * nb < kRimCos;
+      else step = (ng * nb > kCosAligned && !flat(nb)) || (flat(ng) != flat(nb));
       if (step) break;
     }
     return step && runs_beside(apex, a, b, height) ? height : -1.0;
@@ -101,6 +110,18 @@ int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& rid
     ++capped;
   }
   return capped;
+}
+
+}  // namespace
+
+int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& ridge, double target,
+                   std::vector<double>& cap) {
+  return cap_strips(s, ridge, target, Strip::kStep, cap);
+}
+
+int cap_narrow_rims(const Surface& s, const std::vector<std::array<bool, 3>>& ridge, double target,
+                    std::vector<double>& cap) {
+  return cap_strips(s, ridge, target, Strip::kRim, cap);
 }
 
 namespace {
@@ -150,46 +171,56 @@ std::pair<double, double> faces_before_and_added(const Surface& surface, const S
 
 }  // namespace
 
+namespace {
+
+/// `field` refined by the caps `add` writes into a copy of `kept`'s, when that asks for at most
+/// kThinStepBudget x the faces `field` asks for more; then `kept` takes those caps. Returns the
+/// number of places `add` capped when they were taken, else 0.
+template <class AddCaps>
+int refine_within_budget(const Surface& surface, SizeParams& kept, std::optional<SizeField>& field, AddCaps add) {
+  SizeParams refined = kept;
+  refined.vertex_cap.resize(surface.points.size(), 0.0);
+  const int count = add(refined.vertex_cap);
+  if (count == 0) return 0;
+  SizeField with(surface, refined);
+  const auto [before, added] = faces_before_and_added(surface, *field, with);
+  if (added > kThinStepBudget * before) return 0;
+  field.emplace(std::move(with));
+  kept = std::move(refined);
+  return count;
+}
+
+}  // namespace
+
 SizeField size_field_with_steps_and_necks(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
                                      const SizeParams& sp, double target, int* thin_step_faces,
-                                     const std::vector<double>* neck_cap, int* neck_points) {
-  if (thin_step_faces) *thin_step_faces = 0;
-  if (neck_points) *neck_points = 0;
-  SizeParams stepped = sp;
-  stepped.vertex_cap.resize(surface.points.size(), 0.0);
-  const int steps = cap_thin_steps(surface, ridge, target, stepped.vertex_cap);
-  const SizeField plain(surface, sp);
+                                     const std::vector<double>* neck_cap, int* neck_points,
+                                     int* narrow_rim_faces) {
   SizeParams kept = sp;
-  std::optional<SizeField> with_steps;
-  if (steps > 0) {
-    with_steps.emplace(surface, stepped);
-    const auto [before, added] = faces_before_and_added(surface, plain, *with_steps);
-    if (added <= kThinStepBudget * before) {
-      if (thin_step_faces) *thin_step_faces = steps;
-      kept = std::move(stepped);
-    } else {
-      with_steps.reset();
-    }
-  }
-  const SizeField& field = with_steps ? *with_steps : plain;
-  // The necks on top, within a budget of their own: over it, the steps stay as they were.
-  int necks = 0;
-  if (neck_cap) {
-    kept.vertex_cap.resize(surface.points.size(), 0.0);
-    for (size_t v = 0; v < neck_cap->size() && v < kept.vertex_cap.size(); ++v) {
+  std::optional<SizeField> field;
+  field.emplace(surface, sp);
+  // Each kind of cap on top of those taken before, within a budget of its own: over it, the
+  // field stays as it was.
+  const int steps = refine_within_budget(surface, kept, field, [&](std::vector<double>& cap) {
+    return cap_thin_steps(surface, ridge, target, cap);
+  });
+  const int rims = refine_within_budget(surface, kept, field, [&](std::vector<double>& cap) {
+    return cap_narrow_rims(surface, ridge, target, cap);
+  });
+  const int necks = !neck_cap ? 0 : refine_within_budget(surface, kept, field, [&](std::vector<double>& cap) {
+    int count = 0;
+    for (size_t v = 0; v < neck_cap->size() && v < cap.size(); ++v) {
       const double c = (*neck_cap)[v];
       if (!(c > 0)) continue;
-      double& k = kept.vertex_cap[v];
-      k = k > 0 ? std::min(k, c) : c;
-      ++necks;
+      cap[v] = cap[v] > 0 ? std::min(cap[v], c) : c;
+      ++count;
     }
-  }
-  if (necks == 0) return field;
-  SizeField with_necks(surface, kept);
-  const auto [before, added] = faces_before_and_added(surface, field, with_necks);
-  if (added > kThinStepBudget * before) return field;
+    return count;
+  });
+  if (thin_step_faces) *thin_step_faces = steps;
+  if (narrow_rim_faces) *narrow_rim_faces = rims;
   if (neck_points) *neck_points = necks;
-  return with_necks;
+  return std::move(*field);
 }
 
 }  // namespace mr::remesh

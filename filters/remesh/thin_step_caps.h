@@ -27,6 +27,13 @@ namespace mr::remesh {
 int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& ridge, double target,
                    std::vector<double>& cap);
 
+/// Lowers `cap` like cap_thin_steps at the corners of faces across a narrow rim or slot: two
+/// feature lines running beside each other closer than 0.55 x `target`, the faces beyond them
+/// facing apart (within 30 degrees of opposite), as along a thin plate's edge. A layer of
+/// target-sized faces across such a strip is under 30 degrees. Returns the faces that capped.
+int cap_narrow_rims(const Surface& s, const std::vector<std::array<bool, 3>>& ridge, double target,
+                    std::vector<double>& cap);
+
 /// The size field of `sp` on `surface`, with the thin steps' caps where they
 /// add at most half the faces the field asks for without them: the exact union's needles are thin
 /// steps by the hundred, and meshing them all took 5x the faces and 30x the time (joint.off united
@@ -38,6 +45,7 @@ int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& rid
 /// over that budget).
 SizeField size_field_with_steps_and_necks(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
                                      const SizeParams& sp, double target, int* thin_step_faces = nullptr,
-                                     const std::vector<double>* neck_cap = nullptr, int* neck_points = nullptr);
+                                     const std::vector<double>* neck_cap = nullptr, int* neck_points = nullptr,
+                                     int* narrow_rim_faces = nullptr);
 
 }  // namespace mr::remesh

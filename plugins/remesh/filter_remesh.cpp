@@ -199,6 +199,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"merged_lines", QVariant(r.merged_lines)},
       {"thin_patches", QVariant(r.thin_patches)},
       {"thin_step_faces", QVariant(r.thin_step_faces)},
+      {"narrow_rim_faces", QVariant(r.narrow_rim_faces)},
       {"neck_points", QVariant(r.neck_points)},
       {"swaps", QVariant(r.swaps)},
       {"smoothed", QVariant(r.smoothed)},

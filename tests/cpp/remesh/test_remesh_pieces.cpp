@@ -461,3 +461,34 @@ TEST(RemeshPieces, PointGridFindsTheSameCellsForSmallAndHugeRadii) {
     EXPECT_EQ(found, expected) << "radius " << r;
   }
 }
+
+// A line that is one long input edge, its size 0.05 at one end and 0.5 at the other: its points
+// follow the size along the edge (segments growing by one ratio, the first about 0.065 long), not
+// evenly spaced as before, when a corner's small size only changed how many segments there were.
+TEST(RemeshPieces, LinePointsFollowTheSizeAlongOneLongInputEdge) {
+  TriMesh m;
+  test::build(m, {Point3(0, 0, 0), Point3(1, 0, 0), Point3(1, 0.2, 0), Point3(0, 0.2, 0)}, {{0, 1, 2}, {0, 2, 3}});
+  const features::Result fr = features::detect(m, features::Params{});
+  ASSERT_EQ(fr.corners.size(), 4u);
+  const Surface s = Surface::from_mesh(m, fr.patch_of_face);
+  const SizeField size(s, std::vector<double>{0.05, 0.5, 0.5, 0.5});
+  OutputMesh out;
+  discretise_features(m, fr, s, size, out);
+  std::vector<double> xs;  // the points on the edge y = 0, in order
+  for (const Point3& p : out.points)
+    if (std::fabs(p[1]) < 1e-12) xs.push_back(p[0]);
+  std::sort(xs.begin(), xs.end());
+  // Integral of 1/h: ln(10) / 0.45 = 5.1 -> 5 segments, each 10^(1/5) x the one before.
+  ASSERT_EQ(xs.size(), 6u);
+  EXPECT_NEAR(xs[1], (std::pow(10.0, 0.2) - 1) / 9, 1e-9);
+  for (size_t k = 1; k + 1 < xs.size(); ++k)
+    EXPECT_NEAR((xs[k + 1] - xs[k]) / (xs[k] - xs[k - 1]), std::pow(10.0, 0.2), 1e-9) << k;
+  // Where the size is the same at both ends the points stay evenly spaced: the edge y = 0.2,
+  // 1 long between two sizes of 0.5, gets two segments.
+  std::vector<double> top;
+  for (const Point3& p : out.points)
+    if (std::fabs(p[1] - 0.2) < 1e-12) top.push_back(p[0]);
+  std::sort(top.begin(), top.end());
+  ASSERT_EQ(top.size(), 3u);
+  EXPECT_NEAR(top[1], 0.5, 1e-12);
+}

@@ -137,3 +137,35 @@ TEST(RemeshThinStepCaps, StripBesideASeamInAFlatSideIsCapped) {
     }
   }
 }
+
+TEST(RemeshThinStepCaps, NarrowRimIsCappedByTheRimRuleAndAWideOneIsNot) {
+  // A plate 0.004 thick (0.08 x target): its rims' top and bottom face apart. The rim rule caps
+  // the corners of its rims' faces at 1.7 x the thickness; the step rule leaves them.
+  const double target = 0.05;
+  auto rim_caps = [&](double thickness, int& capped) {
+    TriMesh plate;
+    prism(plate, {{0, 0}, {1, 0}, {1, thickness}, {0, thickness}}, {{0, 1, 2}, {0, 2, 3}}, 1.0);
+    features::Params p;
+    p.min_line_length = target;
+    const features::Result fr = features::detect(plate, p);
+    const remesh::Surface s = remesh::Surface::from_mesh(plate, fr.patch_of_face);
+    std::vector<double> cap(plate.vert.size(), 0.0);
+    capped = remesh::cap_narrow_rims(s, fr.ridge, target, cap);
+    return cap;
+  };
+  int capped = 0;
+  const std::vector<double> cap = rim_caps(0.004, capped);
+  EXPECT_EQ(capped, 8);  // the two faces of each of the four rims (x = 0, x = 1, y = 0, y = 1)
+  for (double c : cap) EXPECT_NEAR(c, 1.7 * 0.004, 1e-12);
+  rim_caps(0.6 * target, capped);  // 1.7 x 0.6 x target is over the target: nothing to gain
+  EXPECT_EQ(capped, 0);
+  // A ledge (the faces beyond it face the same way) is the step rule's, not the rim rule's.
+  TriMesh ledge;
+  prism(ledge, kLedgeProfile(0.004), kLedgeEnds, 1.0);
+  features::Params p;
+  p.min_line_length = target;
+  const features::Result fr = features::detect(ledge, p);
+  const remesh::Surface s = remesh::Surface::from_mesh(ledge, fr.patch_of_face);
+  std::vector<double> none(ledge.vert.size(), 0.0);
+  EXPECT_EQ(remesh::cap_narrow_rims(s, fr.ridge, target, none), 0);
+}
