@@ -766,9 +766,10 @@ def test_cli_union_remesh_writes_the_regrid_that_stayed(tmp_path):
     # The regrid's layer is no longer the last one made (a second regrid from the exact union
     # may be made and one of them deleted): the CLI writes the one the pipeline kept. The case:
     # fuzz_union.py --models seed 10, whose exact union regrids better (15.89 degrees at 1%; 20.88
-    # before stop 49, when line points within an input edge were spaced evenly: two lines closing
-    # in on a corner there now get their points where their vertices' neck caps are, and the
-    # uncapped tip coarser).
+    # before stop 49, when line points within an input edge were spaced evenly: of the two lines
+    # that close in on a corner at 20.88 degrees there, one has sizes growing from 0.007 to the
+    # target along it, and its points near the corner moved by part of a segment against the
+    # other line's, so the faces between them pair the points otherwise).
     import json
     import subprocess
     import sys
