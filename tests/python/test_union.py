@@ -1395,3 +1395,20 @@ def test_bug_rounded_clusters_on_nearly_coincident_sheets_left_faces_without_are
     m = ms.current_mesh()
     if sliver_angle > 0:
         assert angles(m).min() > 0.5  # 0.84 measured (0 before)
+
+
+def test_pipeline_regrid_suppresses_the_inputs_short_creases_like_the_remesh_filter():
+    # rocker-arm.obj as its own union, regridded at 1%: with min_line_length at once the target
+    # (the pipeline's before stop 49) its short creases stayed as lines and the regrid kept an
+    # input face of 6.28 degrees between three of its corners; at twice the target (the remesh
+    # filter's own ratio, now the pipeline's) 16.52.
+    from meshregrid import pipeline_union
+    worst = {}
+    for factor in (1.0, 2.0):
+        ms = load("organic/rocker-arm.obj")
+        r = pipeline_union.union(ms, bodies="layers", remesh=True, target_percent=1.0,
+                                 regrid_exact_union_too=False, min_line_length_factor=factor)
+        topo = ms.get_topological_measures()
+        assert r["remesh"]["unmeshed_sides"] == 0 and topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+        worst[factor] = angles(ms.current_mesh()).min()
+    assert worst[1.0] < 7.0 and worst[2.0] >= 16.0
