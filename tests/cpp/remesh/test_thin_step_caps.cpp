@@ -49,14 +49,16 @@ const std::vector<std::array<double, 2>> kLedgeProfile(double width) {
 }
 const std::vector<std::array<int, 3>> kLedgeEnds = {{0, 1, 4}, {1, 2, 3}, {1, 3, 4}, {0, 4, 5}};
 
-std::vector<double> caps_of(const TriMesh& m, double target, int& capped) {
+using CapRule = int (*)(const remesh::Surface&, const std::vector<std::array<bool, 3>>&, double, std::vector<double>&);
+
+std::vector<double> caps_of(const TriMesh& m, double target, int& capped, CapRule rule = remesh::cap_thin_steps) {
   features::Params p;
   p.min_line_length = target;
   p.use_selected_edges_as_ridges = true;
   const features::Result fr = features::detect(m, p);
   const remesh::Surface s = remesh::Surface::from_mesh(m, fr.patch_of_face);
   std::vector<double> cap(m.vert.size(), 0.0);
-  capped = remesh::cap_thin_steps(s, fr.ridge, target, cap);
+  capped = rule(s, fr.ridge, target, cap);
   return cap;
 }
 
@@ -145,13 +147,7 @@ TEST(RemeshThinStepCaps, NarrowRimIsCappedByTheRimRuleAndAWideOneIsNot) {
   auto rim_caps = [&](double thickness, int& capped) {
     TriMesh plate;
     prism(plate, {{0, 0}, {1, 0}, {1, thickness}, {0, thickness}}, {{0, 1, 2}, {0, 2, 3}}, 1.0);
-    features::Params p;
-    p.min_line_length = target;
-    const features::Result fr = features::detect(plate, p);
-    const remesh::Surface s = remesh::Surface::from_mesh(plate, fr.patch_of_face);
-    std::vector<double> cap(plate.vert.size(), 0.0);
-    capped = remesh::cap_narrow_rims(s, fr.ridge, target, cap);
-    return cap;
+    return caps_of(plate, target, capped, remesh::cap_narrow_rims);
   };
   int capped = 0;
   const std::vector<double> cap = rim_caps(0.004, capped);
@@ -162,10 +158,6 @@ TEST(RemeshThinStepCaps, NarrowRimIsCappedByTheRimRuleAndAWideOneIsNot) {
   // A ledge (the faces beyond it face the same way) is the step rule's, not the rim rule's.
   TriMesh ledge;
   prism(ledge, kLedgeProfile(0.004), kLedgeEnds, 1.0);
-  features::Params p;
-  p.min_line_length = target;
-  const features::Result fr = features::detect(ledge, p);
-  const remesh::Surface s = remesh::Surface::from_mesh(ledge, fr.patch_of_face);
-  std::vector<double> none(ledge.vert.size(), 0.0);
-  EXPECT_EQ(remesh::cap_narrow_rims(s, fr.ridge, target, none), 0);
+  caps_of(ledge, target, capped, remesh::cap_narrow_rims);
+  EXPECT_EQ(capped, 0);
 }
