@@ -7,7 +7,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <cmath>
 #include <set>
 
 namespace mr::remesh {

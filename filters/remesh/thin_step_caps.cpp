@@ -169,10 +169,6 @@ std::pair<double, double> faces_before_and_added(const Surface& surface, const S
   return {before, added};
 }
 
-}  // namespace
-
-namespace {
-
 /// `field` refined by the caps `add` writes into a copy of `kept`'s, when that asks for at most
 /// kThinStepBudget x the faces `field` asks for more; then `kept` takes those caps. Returns the
 /// number of places `add` capped when they were taken, else 0.

@@ -4,8 +4,9 @@
 // between the lines are as thin as the strip whatever the points along them: 5-degree strips
 // at 1% (joint.off united with a shifted copy). Elements about as long as the strip is wide fit
 // across it; the caps ask for them there, and the size field's gradation brings the size back
-// up around. Rims and slots (the surfaces beyond face apart), lines closing in on each other
-// (wedges, whose narrow end no size fits) and steps shorter than an element are left alone.
+// up around. Lines closing in on each other (wedges, whose narrow end no size fits) and steps
+// shorter than an element are left alone. Rims and slots (the surfaces beyond face apart) are
+// no steps; cap_narrow_rims caps them, up to a wider strip.
 #pragma once
 
 #include "remesh/size_field.h"
@@ -29,7 +30,7 @@ int cap_thin_steps(const Surface& s, const std::vector<std::array<bool, 3>>& rid
 
 /// Lowers `cap` like cap_thin_steps at the corners of faces across a narrow rim or slot: two
 /// feature lines running beside each other closer than 0.55 x `target`, the faces beyond them
-/// facing apart (within 30 degrees of opposite), as along a thin plate's edge. A layer of
+/// turned from each other by more than 90 degrees, as along a thin plate's edge. A layer of
 /// target-sized faces across such a strip is under 30 degrees. Returns the faces that capped.
 int cap_narrow_rims(const Surface& s, const std::vector<std::array<bool, 3>>& ridge, double target,
                     std::vector<double>& cap);
@@ -39,9 +40,11 @@ int cap_narrow_rims(const Surface& s, const std::vector<std::array<bool, 3>>& ri
 /// steps by the hundred, and meshing them all took 5x the faces and 30x the time (joint.off united
 /// with two copies at 1%). `thin_step_faces` (optional) gets the input faces that capped (0: none,
 /// or over that budget).
-/// `neck_cap` (optional, per surface point, 0 = none; neck_caps.h) is applied on top, within a
-/// budget of its own measured against the field with the steps: over it the necks are dropped
-/// and the steps stay. `neck_points` (optional) gets the points the necks capped (0: none, or
+/// The narrow rims' caps (cap_narrow_rims) come on top, within a budget of their own measured
+/// against the field with the steps; `narrow_rim_faces` (optional) gets their faces (0: none, or
+/// over that budget).
+/// `neck_cap` (optional, per surface point, 0 = none; neck_caps.h) is applied on top of those,
+/// within a budget of its own: over it the necks are dropped and the steps and rims stay. `neck_points` (optional) gets the points the necks capped (0: none, or
 /// over that budget).
 SizeField size_field_with_steps_and_necks(const Surface& surface, const std::vector<std::array<bool, 3>>& ridge,
                                      const SizeParams& sp, double target, int* thin_step_faces = nullptr,

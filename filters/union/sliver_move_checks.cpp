@@ -70,11 +70,12 @@ bool Collapser::folds_more() {
   // checks decide.
   for (int f : replaced_) {
     const auto& t = r_.faces[f];
+    const V3 n = old_normal(f);
     for (int z = 0; z < 3; ++z) {
       const int a = t[z], b = t[(z + 1) % 3];
       if (line_.count(ekey(a, b))) continue;
       const int g = face_across(f, a, b);
-      if (g >= 0 && dot(old_normal(f), old_normal(g)) < kCreaseCos) return false;
+      if (g >= 0 && dot(n, old_normal(g)) < kCreaseCos) return false;
     }
   }
   // Refused: the last round starts at the corners of the moves refused here.

@@ -1,5 +1,6 @@
 """Pipeline: union of intersecting closed bodies, optionally regridded by stage 2 with
 the intersection lines kept as ridges."""
+import math
 from dataclasses import dataclass
 from typing import Callable
 
@@ -55,6 +56,8 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
     """
     if bodies not in BODIES:
         raise ValueError(f"bodies must be one of {sorted(BODIES)}, got {bodies!r}")
+    if not math.isfinite(min_line_length_factor) or min_line_length_factor < 0:
+        raise ValueError(f"min_line_length_factor must be a finite number >= 0, got {min_line_length_factor!r}")
     # Left out, the deviation bound is the filter's own default (it was once 1e-4 here
     # against the filter's 1e-3, so the CLI left slivers the filter mends).
     extra = {} if sliver_max_deviation is None else {"sliver_max_deviation": sliver_max_deviation}

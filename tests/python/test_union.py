@@ -1412,3 +1412,15 @@ def test_pipeline_regrid_suppresses_the_inputs_short_creases_like_the_remesh_fil
         assert r["remesh"]["unmeshed_sides"] == 0 and topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
         worst[factor] = angles(ms.current_mesh()).min()
     assert worst[1.0] < 7.0 and worst[2.0] >= 16.0
+
+
+@pytest.mark.parametrize("factor", [-1.0, float("nan"), float("inf")])
+def test_pipeline_refuses_a_bad_min_line_length_factor_before_uniting(factor):
+    from meshregrid import pipeline_union
+    ms = pymeshlab.MeshSet()
+    ms.create_sphere(subdiv=2)
+    before = snapshot(ms.current_mesh())
+    with pytest.raises(ValueError, match="min_line_length_factor"):
+        pipeline_union.union(ms, bodies="components", remesh=True, min_line_length_factor=factor)
+    assert ms.mesh_number() == 1
+    assert_unchanged(before, ms.current_mesh())
