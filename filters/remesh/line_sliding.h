@@ -27,6 +27,11 @@ struct LinePath {
 /// below `worse_than_rad`, and where it lifts a smallest angle below `goal_rad` to at least
 /// `goal_rad` (the rest are left alone: the lines keep their even spacing); `paths` follow
 /// the moves. Returns the points that moved, in the order they moved.
+/// A point tries sixths of the arc between its neighbours, then twelfths, then small steps
+/// around its own place. Where none lifts its faces to the goal, it slides together with a
+/// slidable point of another line on one of its faces (at a corner where three lines leave, the
+/// face between two of them is bounded by both first segments); such a pair is kept only where
+/// the smallest angle off the wedge tips around both points reaches the goal.
 /// Where the smallest angle around the point is a wedge tip's between `feature_edges`
 /// (wedge_tips.h), which no slide along a straight line changes, the smallest angle off the tips
 /// decides, or no point beside a tip would move.
