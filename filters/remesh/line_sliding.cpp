@@ -99,8 +99,11 @@ bool slide_with_partner(OutputMesh& out, std::vector<LinePath>& paths, const std
   LinePath& path_v = paths[size_t(p)];
   const int v = path_v.points[size_t(i)];
   auto ring_angles = [&](int x) { return star_angles(out.points, out.faces, rings, x, feature_keys); };
-  std::vector<double> fractions(std::begin(kFractions), std::end(kFractions));
-  fractions.insert(fractions.end(), std::begin(kFinerFractions), std::end(kFinerFractions));
+  static const std::vector<double> fractions = [] {  // every place one point tries alone
+    std::vector<double> all(std::begin(kFractions), std::end(kFractions));
+    all.insert(all.end(), std::begin(kFinerFractions), std::end(kFinerFractions));
+    return all;
+  }();
   const std::vector<Point3> normals_v = ring_normals(out, rings, v);
   const Point3 old_v = out.points[v];
   const double lo_v = path_v.arc[size_t(i) - 1], hi_v = path_v.arc[size_t(i) + 1];
@@ -161,11 +164,10 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
                                    double goal_rad) {
   const size_t nv = out.points.size();
   const FaceRings rings(nv, out.faces);
-  const std::vector<int>&begin = rings.begin, &ring = rings.item;
+  const std::vector<int>& begin = rings.begin;
   const std::unordered_set<std::uint64_t> feature_keys = OutputMesh::edge_key_set(feature_edges);
   auto ring_angles = [&](int v) { return star_angles(out.points, out.faces, rings, v, feature_keys); };
   std::vector<int> moved;
-  std::vector<Point3> old_normal;
   const std::vector<std::array<int, 2>> slot = slidable_slots(paths, nv);
   for (size_t p = 0; p < paths.size(); ++p) {
     LinePath& path = paths[p];
@@ -179,11 +181,7 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
       // Between the two bounds a slide must reach the goal: a small gain there costs the
       // line its even spacing (and its chords their fit) for nothing a user can count on.
       const bool must_reach = was.smallest() >= worse_than_rad;
-      old_normal.clear();
-      for (int k = begin[v]; k < begin[v + 1]; ++k) {
-        const auto& f = out.faces[ring[k]];
-        old_normal.push_back(unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
-      }
+      const std::vector<Point3> old_normal = ring_normals(out, rings, v);
       const Point3 old = out.points[v];
       const double lo = path.arc[i - 1], hi = path.arc[i + 1];
       // The smallest angle decides, and where it stays at a wedge tip (between two straight
@@ -194,13 +192,7 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
         const double s = lo + t * (hi - lo);
         const Placement place = at_arc(path, cumulative, s);
         out.points[v] = place.point;
-        bool folded = false;
-        for (int k = begin[v]; k < begin[v + 1] && !folded; ++k) {
-          const auto& f = out.faces[ring[k]];
-          folded = unit_normal(out.points[f[0]], out.points[f[1]], out.points[f[2]]) * old_normal[k - begin[v]] <
-                   kMinNormalAgreement;
-        }
-        if (folded) return;
+        if (ring_folded(out, rings, v, old_normal)) return;
         const StarAngles now = ring_angles(v);
         // A small step's gain at a wedge tip (a tip at a curved line widens a little as the point
         // slides) may not cost the faces off the tips more than down to the goal.

@@ -90,7 +90,8 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
         result["remesh"]["from_exact_union"] = False
         if regrid_exact_union_too and sliver_angle > 0:
             first = _score(ms, regrid_id, result["remesh"])
-            if first < (True, 30.0):
+            closed, smallest, _ = first
+            if not closed or smallest < 30.0:
                 run = _UnionRun(ms, bodies, before, input_layer, regrid)
                 regrid_id = _regrid_exact_union(run, result, regrid_id, first)
         result["remesh_layer"] = regrid_id
