@@ -1,6 +1,7 @@
 #include "remesh/feature_front.h"
 
 #include "common/segment_geometry.h"
+#include "remesh/corner_merging.h"
 #include "remesh/strip_staggering.h"
 
 #include <algorithm>
@@ -181,28 +182,36 @@ int segment_count(const std::vector<double>& lengths, const std::vector<double>&
 }
 
 FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr, const Surface& s,
-                                 const SizeField& size, OutputMesh& out) {
+                                 const SizeField& size, OutputMesh& out, bool merge_tiny_lines) {
   (void)mesh;
   FeatureFront ff;
   ff.patch_front.resize(fr.patch_count);
   const VertexFaces vf(s);
+  const CornerMerging merging = merge_tiny_lines ? merge_close_corners(fr, s, size) : CornerMerging::none(fr, s);
+  const auto& rep = merging.representative;
+  ff.merged_corners = merging.merged_corners;
   std::map<int, int> corner_point;
+  for (int c : fr.corners)
+    if (rep[c] == c) {
+      const int host = vf.begin[c] < vf.begin[c + 1] ? vf.face[vf.begin[c]] : -1;
+      corner_point[c] = out.add_point(s.points[c], host, PointKind::Corner);
+    }
   for (int c : fr.corners) {
-    const int host = vf.begin[c] < vf.begin[c + 1] ? vf.face[vf.begin[c]] : -1;
-    corner_point[c] = out.add_point(s.points[c], host, PointKind::Corner);
+    corner_point[c] = corner_point[rep[c]];
     ff.corner_point.push_back(corner_point[c]);
   }
   // Open lines that share both end corners with another line need two segments, or their
-  // chords would coincide.
+  // chords would coincide; a line whose two corners were merged needs three to bound a patch.
   std::map<std::pair<int, int>, int> end_pairs;
-  for (const auto& line : fr.lines)
-    if (!line.closed) {
-      auto key = std::minmax(line.vertices.front(), line.vertices.back());
+  for (size_t i = 0; i < fr.lines.size(); ++i)
+    if (const auto& line = fr.lines[i]; !line.closed && !merging.dropped_line[i]) {
+      auto key = std::minmax(rep[line.vertices.front()], rep[line.vertices.back()]);
       end_pairs[{key.first, key.second}]++;
     }
 
   const Slivers slivers = find_slivers(fr, s, vf, size);
   ff.dropped_patch = slivers.dropped_patch;
+  for (int g = 0; g < fr.patch_count; ++g) ff.dropped_patch[g] = ff.dropped_patch[g] || merging.dropped_patch[g];
   ff.thin_patch = find_thin_patches(fr, s, size);
   std::vector<std::vector<int>> line_points(fr.lines.size());
   // Lines with a twin last, so the twin's points exist when they are reused.
@@ -216,7 +225,8 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
   for (int t : slivers.twin_of) if (t >= 0) has_twin[t] = 1;
   for (int line_id : order) {
     const auto& line = fr.lines[line_id];
-    const int twin = slivers.twin_of[line_id];
+    if (merging.dropped_line[line_id]) continue;  // inside a merged corner's point
+    const int twin = slivers.twin_of[line_id] >= 0 && !merging.dropped_line[slivers.twin_of[line_id]] ? slivers.twin_of[line_id] : -1;
     std::vector<int> chain = line.vertices;
     if (line.closed) chain.push_back(chain.front());
     if (chain.size() < 2) continue;
@@ -227,8 +237,9 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
     int min_segments = 1;
     if (line.closed) min_segments = 3;
     else {
-      auto key = std::minmax(chain.front(), chain.back());
+      auto key = std::minmax(rep[chain.front()], rep[chain.back()]);
       if (end_pairs[{key.first, key.second}] > 1 || chain.front() == chain.back()) min_segments = 2;
+      if (key.first == key.second && chain.front() != chain.back()) min_segments = 3;
     }
     const std::vector<double> w = normalised_lengths(lengths, sizes);
     std::vector<double> cumulative(segs + 1, 0.0);

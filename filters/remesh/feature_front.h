@@ -24,6 +24,7 @@ struct FeatureFront {
   /// a thin strip (the rim of a thin plate) that takes one layer of faces between its lines.
   std::vector<char> thin_patch;
   int merged_lines = 0;  ///< lines that took the points of a nearly coincident twin
+  int merged_corners = 0;  ///< corners that took the point of a corner joined to them by a tiny line
   /// Every line with its input polyline, for sliding its points later (twins once).
   std::vector<LinePath> line_paths;
 };
@@ -37,8 +38,9 @@ int segment_count(const std::vector<double>& lengths, const std::vector<double>&
 
 /// Appends corner and line points to `out` and returns the patch fronts. Two open lines between
 /// the same corners closer than a tenth of the local size, around a patch whose faces all lie on
-/// them (a sliver, as in noisy scans), get the same points and that patch is dropped.
+/// them (a sliver, as in noisy scans), get the same points and that patch is dropped. With
+/// `merge_tiny_lines`, corners joined by a tiny line share one point (corner_merging.h).
 FeatureFront discretise_features(const TriMesh& mesh, const features::Result& features, const Surface& surface,
-                                 const SizeField& size, OutputMesh& out);
+                                 const SizeField& size, OutputMesh& out, bool merge_tiny_lines = true);
 
 }  // namespace mr::remesh

@@ -317,13 +317,15 @@ Result remesh_once(const TriMesh& given, const Params& params, SliverChoice choi
 
   progress(params, 12, "Discretising feature lines");
   OutputMesh out;
-  const FeatureFront ff = discretise_features(input, fr, surface, size, out);
+  // Tiny lines merge with the feature-noise suppression on; strict mode keeps every corner.
+  const FeatureFront ff = discretise_features(input, fr, surface, size, out, fp.min_line_length > 0);
   result.feature_edges = int(ff.feature_edges.size());
 
   result.merged_lines = ff.merged_lines;
+  result.merged_corners = ff.merged_corners;
   long checks_left = run_check_budget(surface, size);
   for (int patch = 0; patch < fr.patch_count; ++patch) {
-    if (ff.dropped_patch[patch]) continue;  // a sliver between twin lines: nothing fits in it
+    if (ff.dropped_patch[patch]) continue;  // a sliver between twin lines or inside merged corners
     progress(params, 15 + int(65.0 * patch / std::max(fr.patch_count, 1)), "Advancing the front");
     FrontParams fp_patch;
     fp_patch.checks_left = &checks_left;

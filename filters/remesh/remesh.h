@@ -48,6 +48,7 @@ struct Result {
   int suppressed_crumples = 0;  ///< of those, crumples (patches turned over against the surface around)
   int feature_edges = 0;
   int merged_lines = 0;         ///< lines merged with a nearly coincident twin (sliver patch dropped)
+  int merged_corners = 0;       ///< corners that share the point of a corner a tiny line joins them to (corner_merging.h)
   int thin_patches = 0;         ///< strips narrower than the elements, given one layer of faces
   int thin_step_faces = 0;      ///< input faces of thin steps whose corners capped the size (thin_step_caps.h)
   int narrow_rim_faces = 0;     ///< input faces across narrow rims and slots whose corners capped the size (thin_step_caps.h)

@@ -197,6 +197,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"retried_patches", QVariant(r.retried_patches)},
       {"local_repairs", QVariant(r.local_repairs)},
       {"merged_lines", QVariant(r.merged_lines)},
+      {"merged_corners", QVariant(r.merged_corners)},
       {"thin_patches", QVariant(r.thin_patches)},
       {"thin_step_faces", QVariant(r.thin_step_faces)},
       {"narrow_rim_faces", QVariant(r.narrow_rim_faces)},

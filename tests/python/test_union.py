@@ -1245,6 +1245,20 @@ def test_pipeline_regrid_of_joint_with_turned_copies_meshes_its_necks():
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
+
+def test_pipeline_regrid_merges_corners_joined_by_a_tiny_line():
+    # scripts/fuzz_union.py --models, seed 28 at 1%: two corners 0.0012 apart (0.05 x target) on
+    # the exact union's lines made a face of 5.33 degrees; sharing one point (stop 51, docs/remesh.md
+    # step 3, tiny lines) the worst is its 12.44-degree wedge and 15.11 off the wedges.
+    from meshregrid import pipeline_union
+    ms = _models_case_layers(28)
+    r = pipeline_union.union(ms, remesh=True, target_percent=1.0)["remesh"]
+    assert r["merged_corners"] >= 1 and r["unmeshed_sides"] == 0
+    assert angles(ms.current_mesh()).min() >= 12.0
+    assert r["min_angle_off_wedges"] >= 14.5
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
 def _near_reference(far_parts, transform):
     """manifold3d's union volume of far_parts moved back near the origin (exact there, as in the fuzzer)."""
     fuzz_union = _fuzz_union()

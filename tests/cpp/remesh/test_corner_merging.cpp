@@ -1,0 +1,103 @@
+// Corners joined by a line much shorter than the elements share one output point.
+#include "remesh/remesh.h"
+#include "shapes.h"
+
+#include <vcg/complex/complex.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+using namespace mr;
+
+namespace {
+
+// The cube [-1,1]^3 with its corner (1,1,1) cut off by a triangle of side cut x sqrt(2): three
+// corners joined by three tiny lines around a tiny patch.
+void chamfered_cube(TriMesh& m, double cut) {
+  std::vector<Point3> points;
+  std::vector<std::array<int, 3>> faces;
+  auto point = [&](const Point3& p) {
+    for (size_t i = 0; i < points.size(); ++i)
+      if (points[i] == p) return int(i);
+    points.push_back(p);
+    return int(points.size()) - 1;
+  };
+  auto fan = [&](std::vector<int> polygon) {  // convex, about the origin: orient outwards
+    Point3 centre(0, 0, 0);
+    for (int v : polygon) centre += points[v] / double(polygon.size());
+    const Point3 n = (points[polygon[1]] - points[polygon[0]]) ^ (points[polygon[2]] - points[polygon[0]]);
+    if (n * centre < 0) std::reverse(polygon.begin(), polygon.end());
+    for (size_t k = 1; k + 1 < polygon.size(); ++k) faces.push_back({polygon[0], polygon[k], polygon[k + 1]});
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign : {-1, 1}) {
+      // The face's corners in order around it; the cut corner gives its two cut points.
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      std::vector<int> polygon;
+      for (auto [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+        Point3 p;
+        p[axis] = sign;
+        p[u] = a;
+        p[w] = b;
+        if (p == Point3(1, 1, 1)) {
+          Point3 before = p, after = p;  // along the sides to the previous and the next corner
+          (b == 1 && a == 1 ? before[w] : after[u]) -= cut;
+          (b == 1 && a == 1 ? after[u] : before[w]) -= cut;
+          polygon.push_back(point(before));
+          polygon.push_back(point(after));
+        } else
+          polygon.push_back(point(p));
+      }
+      fan(polygon);
+    }
+  fan({point(Point3(1 - cut, 1, 1)), point(Point3(1, 1 - cut, 1)), point(Point3(1, 1, 1 - cut))});
+  test::build(m, points, faces);
+}
+
+}  // namespace
+
+TEST(RemeshCornerMerging, ATinyCutOffCornerBecomesOnePointAndItsPatchGoes) {
+  // Cut 0.003 (lines of 0.0042) at a size of 0.2: one row of faces around the tiny triangle had
+  // angles of about atan(0.0042 / 0.1) = 2.4 degrees.
+  TriMesh m;
+  chamfered_cube(m, 0.003);
+  remesh::Params p;
+  p.target_length = 0.2;
+  TriMesh out;
+  const remesh::Result r = remesh::remesh(m, p, out);
+  EXPECT_EQ(r.corners, 10);
+  EXPECT_EQ(r.merged_corners, 2);
+  EXPECT_EQ(r.unmeshed_sides, 0);
+  int selected = 0;
+  for (const auto& v : out.vert) selected += v.IsS() ? 1 : 0;
+  EXPECT_EQ(selected, 8);  // the seven cube corners and the one point of the cut
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& f : out.face)
+    for (int z = 0; z < 3; ++z)
+      edges[std::minmax(int(vcg::tri::Index(out, f.cV(z))), int(vcg::tri::Index(out, f.cV((z + 1) % 3))))]++;
+  for (const auto& [e, n] : edges) EXPECT_EQ(n, 2);  // closed and two-manifold
+  EXPECT_EQ(int(out.vert.size()) - int(edges.size()) + int(out.face.size()), 2);
+  EXPECT_GE(r.min_angle_deg, 30.0);  // 30.79 measured; 4.56 with every corner kept
+  // The merged point is one of the cut's corners, within the cut of the cube's corner.
+  double closest = 1e9;
+  for (const auto& v : out.vert) closest = std::min(closest, (v.cP() - Point3(1, 1, 1)).Norm());
+  EXPECT_NEAR(closest, 0.003, 1e-12);
+}
+
+TEST(RemeshCornerMerging, ACutAsLongAsAFifthOfTheSizeStays) {
+  // Cut 0.2 (lines of 0.28) at a size of 0.2: a real facet, meshed with its three corners.
+  TriMesh m;
+  chamfered_cube(m, 0.2);
+  remesh::Params p;
+  p.target_length = 0.2;
+  TriMesh out;
+  const remesh::Result r = remesh::remesh(m, p, out);
+  EXPECT_EQ(r.merged_corners, 0);
+  EXPECT_EQ(r.unmeshed_sides, 0);
+  int selected = 0;
+  for (const auto& v : out.vert) selected += v.IsS() ? 1 : 0;
+  EXPECT_EQ(selected, 10);
+}
