@@ -1,6 +1,11 @@
 #include "remesh/corner_merging.h"
 
+#include "remesh/feature_front.h"
+
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 
@@ -11,6 +16,45 @@ namespace {
 int find_root(std::vector<int>& parent, int v) {
   while (parent[v] != v) v = parent[v] = parent[parent[v]];
   return v;
+}
+
+// The faces on either side of each ridge edge, by directed edge.
+using RidgeFaces = std::map<std::pair<int, int>, int>;
+
+RidgeFaces ridge_faces(const features::Result& fr, const Surface& s) {
+  RidgeFaces out;
+  for (size_t f = 0; f < s.faces.size(); ++f)
+    for (int z = 0; z < 3; ++z)
+      if (fr.ridge[f][z]) out[{s.faces[f][z], s.faces[f][(z + 1) % 3]}] = int(f);
+  return out;
+}
+
+// A step: lines i and j lie within kSliverGap x the smallest size on them of each other, and
+// the surface beyond them goes on the same way (the faces across each line's first edge from
+// the patch they share within kStepTurn of each other). Around a thin plate's rim the surfaces
+// beyond face apart: merged there, its top and bottom would meet in a knife edge.
+constexpr double kStepTurnDeg = 30.0;
+bool step_twins(const features::Result& fr, const Surface& s, const SizeField& size, const RidgeFaces& rf, size_t i,
+                size_t j) {
+  std::vector<Point3> a, b;
+  double h = std::numeric_limits<double>::max();
+  for (int v : fr.lines[i].vertices) { a.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
+  for (int v : fr.lines[j].vertices) { b.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
+  if (polyline_gap(a, b) > kSliverGap * h) return false;
+  auto sides = [&](size_t line) {
+    const auto& v = fr.lines[line].vertices;
+    auto x = rf.find({v[0], v[1]}), y = rf.find({v[1], v[0]});
+    return std::array<int, 2>{x == rf.end() ? -1 : x->second, y == rf.end() ? -1 : y->second};
+  };
+  const auto si = sides(i), sj = sides(j);
+  if (std::min({si[0], si[1], sj[0], sj[1]}) < 0) return false;
+  for (int p : si)
+    for (int q : sj)
+      if (s.group[p] == s.group[q]) {  // the strip between them; beyond it, the other faces
+        const int beyond_i = si[0] == p ? si[1] : si[0], beyond_j = sj[0] == q ? sj[1] : sj[0];
+        return s.face_normal[beyond_i] * s.face_normal[beyond_j] >= std::cos(kStepTurnDeg * M_PI / 180.0);
+      }
+  return false;
 }
 
 double polyline_length(const Surface& s, const std::vector<int>& chain) {
@@ -120,33 +164,34 @@ CornerMerging merge_close_corners(const features::Result& fr, const Surface& s, 
     else vanishing.push_back(p);
   }
   // Two lines that would join the same two points, where they did not before, close a lens
-  // between them (a triangle of corners loses a side): no better than the tiny line.
+  // between them (a triangle of corners loses a side): no better than the tiny line, unless
+  // they are twins along a step (a ledge 0.002 high between plates, box.STL united), which then
+  // share their points (feature_front.cpp).
   auto mapped = [&](int v) {
     const int g = group_of[v];
     return g >= 0 && !refused[g] && corner[v] ? rep[g] : v;
   };
-  std::map<std::pair<int, int>, std::pair<int, int>> first_ends;  // mapped ends -> ends of the first line
+  auto ends_of = [&](size_t i) -> std::pair<int, int> { return std::minmax(fr.lines[i].vertices.front(), fr.lines[i].vertices.back()); };
+  auto key_of = [&](size_t i) -> std::pair<int, int> { return std::minmax(mapped(fr.lines[i].vertices.front()), mapped(fr.lines[i].vertices.back())); };
+  const RidgeFaces rf = ridge_faces(fr, s);
+  auto refuse_lens = [&](size_t i, size_t j) {
+    if (step_twins(fr, s, size, rf, i, j)) return;
+    for (int x : {fr.lines[i].vertices.front(), fr.lines[i].vertices.back(), fr.lines[j].vertices.front(), fr.lines[j].vertices.back()})
+      if (group_of[x] >= 0 && corner[x]) refused[group_of[x]] = 1;
+  };
+  std::map<std::pair<int, int>, size_t> first_moved;  // mapped ends -> the first line the merge moves there
+  std::vector<char> open_line(fr.lines.size(), 0);
+  for (size_t i = 0; i < fr.lines.size(); ++i)
+    open_line[i] = !fr.lines[i].closed && fr.lines[i].vertices.size() >= 2 && !tiny[i];
   for (size_t i = 0; i < fr.lines.size(); ++i) {
-    const auto& v = fr.lines[i].vertices;
-    if (fr.lines[i].closed || v.size() < 2 || tiny[i]) continue;
-    const std::pair<int, int> ends = std::minmax(v.front(), v.back());
-    const std::pair<int, int> key = std::minmax(mapped(v.front()), mapped(v.back()));
-    if (key == ends) continue;
-    const auto [it, fresh] = first_ends.insert({key, ends});
-    if (!fresh && it->second != ends)
-      for (int x : {v.front(), v.back(), it->second.first, it->second.second})
-        if (group_of[x] >= 0 && corner[x]) refused[group_of[x]] = 1;
+    if (!open_line[i] || key_of(i) == ends_of(i)) continue;
+    const auto [it, fresh] = first_moved.insert({key_of(i), i});
+    if (!fresh && ends_of(it->second) != ends_of(i)) refuse_lens(i, it->second);
   }
   for (size_t i = 0; i < fr.lines.size(); ++i) {
-    const auto& v = fr.lines[i].vertices;
-    if (fr.lines[i].closed || v.size() < 2 || tiny[i]) continue;
-    const std::pair<int, int> ends = std::minmax(v.front(), v.back());
-    const std::pair<int, int> key = std::minmax(mapped(v.front()), mapped(v.back()));
-    if (key != ends) continue;
-    auto it = first_ends.find(key);  // an unmoved line the merge gives a new twin
-    if (it != first_ends.end() && it->second != ends)
-      for (int x : {it->second.first, it->second.second})
-        if (group_of[x] >= 0 && corner[x]) refused[group_of[x]] = 1;
+    if (!open_line[i] || key_of(i) != ends_of(i)) continue;
+    auto it = first_moved.find(key_of(i));  // an unmoved line the merge gives a new twin
+    if (it != first_moved.end() && ends_of(it->second) != ends_of(i)) refuse_lens(i, it->second);
   }
   for (size_t g = 0; g < groups.size(); ++g) {
     if (refused[g]) continue;

@@ -61,24 +61,25 @@ double share_along_segment(double t, double h0, double h1) {
 }
 
 // A patch no element of the local size fits in: two open lines between the same two corners
-// closer than kSliverGap x size, with every face of the patch between them having all its
-// vertices on the two lines. The twin line gets the points of the first and the patch is dropped.
-constexpr double kSliverGap = 0.1;
+// (or corners merged into one point, corner_merging.h) closer than kSliverGap x size, with every
+// face of the patch between them having all its vertices on the two lines. The twin line gets
+// the points of the first and the patch is dropped.
 
 struct Slivers {
   std::vector<int> twin_of;  ///< per line: the line whose points it takes, or -1
   std::vector<char> dropped_patch;
 };
 
-Slivers find_slivers(const features::Result& fr, const Surface& s, const VertexFaces& vf, const SizeField& size) {
+Slivers find_slivers(const features::Result& fr, const Surface& s, const VertexFaces& vf, const SizeField& size,
+                     const CornerMerging& merging) {
   Slivers sl{std::vector<int>(fr.lines.size(), -1), std::vector<char>(fr.patch_count, 0)};
   std::vector<int> patch_faces(fr.patch_count, 0);
   for (int g : s.group) patch_faces[g]++;
   std::map<std::pair<int, int>, std::vector<int>> by_ends;
   for (size_t i = 0; i < fr.lines.size(); ++i) {
     const auto& l = fr.lines[i];
-    if (!l.closed && l.vertices.size() >= 2 && l.vertices.front() != l.vertices.back())
-      by_ends[std::minmax(l.vertices.front(), l.vertices.back())].push_back(int(i));
+    const int a = merging.representative[l.vertices.front()], b = merging.representative[l.vertices.back()];
+    if (!l.closed && l.vertices.size() >= 2 && a != b && !merging.dropped_line[i]) by_ends[std::minmax(a, b)].push_back(int(i));
   }
   for (const auto& [ends, ids] : by_ends) {
     if (ids.size() != 2) continue;
@@ -209,7 +210,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       end_pairs[{key.first, key.second}]++;
     }
 
-  const Slivers slivers = find_slivers(fr, s, vf, size);
+  const Slivers slivers = find_slivers(fr, s, vf, size, merging);
   ff.dropped_patch = slivers.dropped_patch;
   for (int g = 0; g < fr.patch_count; ++g) ff.dropped_patch[g] = ff.dropped_patch[g] || merging.dropped_patch[g];
   ff.thin_patch = find_thin_patches(fr, s, size);
@@ -288,7 +289,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
     if (twin >= 0) {
       // Same points as the twin, in this line's direction.
       pts = line_points[twin];
-      if (fr.lines[twin].vertices.front() != chain.front()) std::reverse(pts.begin(), pts.end());
+      if (rep[fr.lines[twin].vertices.front()] != rep[chain.front()]) std::reverse(pts.begin(), pts.end());
       ff.merged_lines++;
     }
     if (twin < 0) pts[0] = end_point(chain.front());

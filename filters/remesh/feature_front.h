@@ -14,6 +14,10 @@
 
 namespace mr::remesh {
 
+/// Lines closer than this times the size are twins around a sliver patch; a strip lower than it
+/// is thin (one layer of faces).
+constexpr double kSliverGap = 0.1;
+
 struct FeatureFront {
   std::vector<std::vector<FrontSide>> patch_front;  ///< per patch, oriented like its input faces
   std::vector<std::array<int, 2>> feature_edges;    ///< output edges along the lines

@@ -57,6 +57,33 @@ void chamfered_cube(TriMesh& m, double cut) {
   test::build(m, points, faces);
 }
 
+// The cube [-1,1]^3 whose top is raised by `step` for x > 0: a step face across the top whose two
+// lines end at tiny lines of length `step` on the front and the back.
+void stepped_block(TriMesh& m, double step) {
+  const double t = 1 + step;
+  const std::vector<Point3> points = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},  // bottom B0-B3
+                                      {-1, -1, 1},  {0, -1, 1},  {0, 1, 1},  {-1, 1, 1},   // top left TL0-TL3
+                                      {0, -1, t},   {1, -1, t},  {1, 1, t},  {0, 1, t}};   // top right TR0-TR3
+  std::vector<std::array<int, 3>> faces;
+  auto quad = [&](int a, int b, int c, int d) {  // counter-clockwise seen from outside
+    faces.push_back({a, b, c});
+    faces.push_back({a, c, d});
+  };
+  quad(0, 3, 2, 1);    // bottom
+  quad(4, 5, 6, 7);    // top left
+  quad(8, 9, 10, 11);  // top right
+  quad(5, 8, 11, 6);   // the step, facing -x
+  quad(0, 4, 7, 3);    // x = -1
+  quad(1, 2, 10, 9);   // x = +1
+  // Front (y = -1) and back (y = +1): L-shaped, four triangles each.
+  for (auto [a, b, c] : {std::array<int, 3>{0, 1, 5}, {1, 9, 5}, {9, 8, 5}, {0, 5, 4}}) {
+    faces.push_back({a, b, c});
+    auto back = [](int v) { return v + (v % 4 == 0 ? 3 : v % 4 == 1 ? 1 : v % 4 == 2 ? -1 : -3); };
+    faces.push_back({back(a), back(c), back(b)});
+  }
+  test::build(m, points, faces);
+}
+
 }  // namespace
 
 TEST(RemeshCornerMerging, ATinyCutOffCornerBecomesOnePointAndItsPatchGoes) {
@@ -100,4 +127,39 @@ TEST(RemeshCornerMerging, ACutAsLongAsAFifthOfTheSizeStays) {
   int selected = 0;
   for (const auto& v : out.vert) selected += v.IsS() ? 1 : 0;
   EXPECT_EQ(selected, 10);
+}
+
+TEST(RemeshCornerMerging, AStepLowerThanATenthOfTheSizeClosesWithItsTwoLinesSharingPoints) {
+  // A step 0.002 high across the top at a size of 0.2: its ends are tiny lines, its two lines
+  // become twins (the surfaces beyond both go the same way) and the step's strip is not meshed.
+  TriMesh m;
+  stepped_block(m, 0.002);
+  remesh::Params p;
+  p.target_length = 0.2;
+  TriMesh out;
+  const remesh::Result r = remesh::remesh(m, p, out);
+  EXPECT_EQ(r.merged_corners, 2);
+  EXPECT_EQ(r.merged_lines, 1);
+  EXPECT_EQ(r.unmeshed_sides, 0);
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& f : out.face)
+    for (int z = 0; z < 3; ++z)
+      edges[std::minmax(int(vcg::tri::Index(out, f.cV(z))), int(vcg::tri::Index(out, f.cV((z + 1) % 3))))]++;
+  for (const auto& [e, n] : edges) EXPECT_EQ(n, 2);
+  EXPECT_EQ(int(out.vert.size()) - int(edges.size()) + int(out.face.size()), 2);
+  EXPECT_GE(r.min_angle_deg, 30.0);
+}
+
+TEST(RemeshCornerMerging, AThinPlatesRimStaysAStripOfOneLayer) {
+  // A 100 x 50 x 0.1 plate at size 2: the rim's ends are tiny lines too, but the surfaces beyond
+  // its two lines face apart; merged, the top and the bottom would meet in a knife edge.
+  TriMesh m;
+  test::cube(m, 1);
+  for (auto& v : m.vert) v.P() = Point3(v.P()[0] * 50.0, v.P()[1] * 25.0, v.P()[2] * 0.05);
+  remesh::Params p;
+  p.target_length = 2.0;
+  TriMesh out;
+  const remesh::Result r = remesh::remesh(m, p, out);
+  EXPECT_EQ(r.merged_corners, 0);
+  EXPECT_EQ(r.thin_patches, 4);
 }
