@@ -1,22 +1,17 @@
 #include "remesh/corner_merging.h"
 
+#include "common/union_find.h"
 #include "remesh/feature_front.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <numeric>
 
 namespace mr::remesh {
 
 namespace {
-
-int find_root(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
 
 // The faces on either side of each ridge edge, by directed edge.
 using RidgeFaces = std::map<std::pair<int, int>, int>;
@@ -36,11 +31,7 @@ RidgeFaces ridge_faces(const features::Result& fr, const Surface& s) {
 constexpr double kStepTurnDeg = 30.0;
 bool step_twins(const features::Result& fr, const Surface& s, const SizeField& size, const RidgeFaces& rf, size_t i,
                 size_t j) {
-  std::vector<Point3> a, b;
-  double h = std::numeric_limits<double>::max();
-  for (int v : fr.lines[i].vertices) { a.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
-  for (int v : fr.lines[j].vertices) { b.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
-  if (polyline_gap(a, b) > kSliverGap * h) return false;
+  if (!within_sliver_gap(s, size, fr.lines[i].vertices, fr.lines[j].vertices)) return false;
   auto sides = [&](size_t line) {
     const auto& v = fr.lines[line].vertices;
     auto x = rf.find({v[0], v[1]}), y = rf.find({v[1], v[0]});
@@ -84,8 +75,7 @@ CornerMerging merge_close_corners(const features::Result& fr, const Surface& s, 
     if (!line.closed && line.vertices.size() >= 2) { ++degree[line.vertices.front()]; ++degree[line.vertices.back()]; }
 
   // Tiny lines join their end corners into groups.
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind joined(n);
   std::vector<char> tiny(fr.lines.size(), 0);
   for (size_t i = 0; i < fr.lines.size(); ++i) {
     const auto& v = fr.lines[i].vertices;
@@ -93,10 +83,10 @@ CornerMerging merge_close_corners(const features::Result& fr, const Surface& s, 
     const double h = std::min(size.at_vertex(v.front()), size.at_vertex(v.back()));
     if (polyline_length(s, v) >= kTinyLine * h) continue;
     tiny[i] = 1;
-    parent[find_root(parent, v.front())] = find_root(parent, v.back());
+    joined.unite(v.front(), v.back());
   }
   std::map<int, std::vector<int>> members;  // root -> corners, increasing
-  for (int c : fr.corners) members[find_root(parent, c)].push_back(c);
+  for (int c : fr.corners) members[joined.find(c)].push_back(c);
   std::vector<int> group_of(n, -1);  // per vertex: the group it lies in (corners and tiny lines' vertices)
   std::vector<std::vector<int>> groups;
   std::vector<int> rep;

@@ -78,17 +78,14 @@ Slivers find_slivers(const features::Result& fr, const Surface& s, const VertexF
   std::map<std::pair<int, int>, std::vector<int>> by_ends;
   for (size_t i = 0; i < fr.lines.size(); ++i) {
     const auto& l = fr.lines[i];
+    if (l.closed || l.vertices.size() < 2 || merging.dropped_line[i]) continue;
     const int a = merging.representative[l.vertices.front()], b = merging.representative[l.vertices.back()];
-    if (!l.closed && l.vertices.size() >= 2 && a != b && !merging.dropped_line[i]) by_ends[std::minmax(a, b)].push_back(int(i));
+    if (a != b) by_ends[std::minmax(a, b)].push_back(int(i));
   }
   for (const auto& [ends, ids] : by_ends) {
     if (ids.size() != 2) continue;
     const auto &va = fr.lines[ids[0]].vertices, &vb = fr.lines[ids[1]].vertices;
-    std::vector<Point3> pa, pb;
-    double h = std::numeric_limits<double>::max();
-    for (int v : va) { pa.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
-    for (int v : vb) { pb.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
-    if (polyline_gap(pa, pb) > kSliverGap * h) continue;
+    if (!within_sliver_gap(s, size, va, vb)) continue;
     // The patch between them: its faces around the lines all have their vertices on the lines.
     std::set<int> on_lines(va.begin(), va.end());
     on_lines.insert(vb.begin(), vb.end());
@@ -176,6 +173,14 @@ double polyline_gap(const std::vector<Point3>& a, const std::vector<Point3>& b) 
   return std::max(one_way(a, b), one_way(b, a));
 }
 
+bool within_sliver_gap(const Surface& s, const SizeField& size, const std::vector<int>& a, const std::vector<int>& b) {
+  std::vector<Point3> pa, pb;
+  double h = std::numeric_limits<double>::max();
+  for (int v : a) { pa.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
+  for (int v : b) { pb.push_back(s.points[v]); h = std::min(h, size.at_vertex(v)); }
+  return polyline_gap(pa, pb) <= kSliverGap * h;
+}
+
 int segment_count(const std::vector<double>& lengths, const std::vector<double>& sizes, int min_segments) {
   double total = 0;
   for (double x : normalised_lengths(lengths, sizes)) total += x;
@@ -227,7 +232,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
   for (int line_id : order) {
     const auto& line = fr.lines[line_id];
     if (merging.dropped_line[line_id]) continue;  // inside a merged corner's point
-    const int twin = slivers.twin_of[line_id] >= 0 && !merging.dropped_line[slivers.twin_of[line_id]] ? slivers.twin_of[line_id] : -1;
+    const int twin = slivers.twin_of[line_id];  // never a dropped line (find_slivers skips them)
     std::vector<int> chain = line.vertices;
     if (line.closed) chain.push_back(chain.front());
     if (chain.size() < 2) continue;

@@ -36,6 +36,10 @@ struct FeatureFront {
 /// Largest distance from a vertex of one polyline to the other polyline (both ways).
 double polyline_gap(const std::vector<Point3>& a, const std::vector<Point3>& b);
 
+/// Lines through surface vertices `a` and `b` lie within kSliverGap x the smallest size on
+/// either of each other (twins: no element of that size fits between them).
+bool within_sliver_gap(const Surface& s, const SizeField& size, const std::vector<int>& a, const std::vector<int>& b);
+
 /// Number of segments for a polyline of `lengths` whose vertices have sizes `sizes`
 /// (one more than lengths): the size-weighted length rounded, at least `min_segments`.
 int segment_count(const std::vector<double>& lengths, const std::vector<double>& sizes, int min_segments);
