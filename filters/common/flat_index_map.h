@@ -2,7 +2,9 @@
 // linear probing. For the big lookup tables of one run (a point per hash bucket, an
 // edge-face crossing per key): std::unordered_map allocates a node per entry, and at
 // a million entries the allocations, the cache misses and freeing them at the end
-// cost more than the lookups. No erase; the order of insertion is not kept.
+// cost more than the lookups. The order of insertion is not kept. Erasing shifts the
+// rest of a probe run back (no tombstones), so a table whose entries come and go (the
+// remesher's side -> face table through its edge swaps) stays as fast as a fresh one.
 #pragma once
 
 #include <cstddef>
@@ -43,6 +45,43 @@ public:
     value_[i] = value;
     ++size_;
     return {value, true};
+  }
+
+  /// Sets the value of `key`, inserting it if absent. `value` must be >= 0.
+  void assign(const Key& key, int value) {
+    if (2 * (size_ + 1) > value_.size()) rehash(value_.empty() ? 16 : 2 * value_.size());
+    size_t i = slot(key);
+    for (; value_[i] >= 0; i = (i + 1) & mask_)
+      if (key_[i] == key) {
+        value_[i] = value;
+        return;
+      }
+    key_[i] = key;
+    value_[i] = value;
+    ++size_;
+  }
+
+  /// Removes `key`; false if it was absent.
+  bool erase(const Key& key) {
+    if (size_ == 0) return false;
+    size_t gap = slot(key);
+    for (;; gap = (gap + 1) & mask_) {
+      if (value_[gap] < 0) return false;
+      if (key_[gap] == key) break;
+    }
+    // Entries after the gap in its probe run move into it unless their home slot lies
+    // cyclically in (gap, j]: every entry stays reachable from its home without a marker.
+    for (size_t j = (gap + 1) & mask_; value_[j] >= 0; j = (j + 1) & mask_) {
+      const size_t home = slot(key_[j]);
+      const bool stays = gap <= j ? (gap < home && home <= j) : (gap < home || home <= j);
+      if (stays) continue;
+      key_[gap] = key_[j];
+      value_[gap] = value_[j];
+      gap = j;
+    }
+    value_[gap] = -1;
+    --size_;
+    return true;
   }
 
 private:

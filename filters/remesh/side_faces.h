@@ -2,11 +2,11 @@
 // swaps find the face across an edge, and the fourth point of the pair, through it.
 #pragma once
 
+#include "common/flat_index_map.h"
 #include "remesh/output_mesh.h"
 
 #include <array>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace mr::remesh {
@@ -22,7 +22,7 @@ public:
   explicit SideFaces(const std::vector<std::array<int, 3>>& faces) {
     face_.reserve(faces.size() * 3);
     for (size_t f = 0; f < faces.size(); ++f)
-      for (int z = 0; z < 3; ++z) face_[directed(faces[f][z], faces[f][(z + 1) % 3])] = int(f);
+      for (int z = 0; z < 3; ++z) face_.assign(directed(faces[f][z], faces[f][(z + 1) % 3]), int(f));
   }
 
   /// The pair across side z of face f, if there is one whose swap to c-d would not repeat an
@@ -31,9 +31,9 @@ public:
     const auto& F = out.faces[f];
     p.f = f;
     p.x = F[z], p.y = F[(z + 1) % 3], p.c = F[(z + 2) % 3];
-    auto it = face_.find(directed(p.y, p.x));
-    if (it == face_.end()) return false;
-    p.g = it->second;
+    const int* g = face_.find(directed(p.y, p.x));
+    if (!g) return false;
+    p.g = *g;
     p.d = -1;
     for (int k : out.faces[p.g]) if (k != p.x && k != p.y) p.d = k;
     return p.d >= 0 && p.d != p.c && !has_edge(p.c, p.d);
@@ -49,25 +49,35 @@ public:
   void set_face(OutputMesh& out, int f, const std::array<int, 3>& t) {
     auto& F = out.faces[f];
     for (int k = 0; k < 3; ++k) {
-      auto it = face_.find(directed(F[k], F[(k + 1) % 3]));
-      if (it != face_.end() && it->second == f) face_.erase(it);
+      const std::uint64_t side = directed(F[k], F[(k + 1) % 3]);
+      const int* g = face_.find(side);
+      if (g && *g == f) face_.erase(side);
     }
     F = t;
-    for (int k = 0; k < 3; ++k) face_[directed(F[k], F[(k + 1) % 3])] = f;
+    for (int k = 0; k < 3; ++k) face_.assign(directed(F[k], F[(k + 1) % 3]), f);
   }
 
   /// The face holding directed side a->b, or -1.
   int face_of(int a, int b) const {
-    auto it = face_.find(directed(a, b));
-    return it == face_.end() ? -1 : it->second;
+    const int* f = face_.find(directed(a, b));
+    return f ? *f : -1;
   }
-  bool has_edge(int a, int b) const { return face_.count(directed(a, b)) || face_.count(directed(b, a)); }
+  bool has_edge(int a, int b) const { return face_.find(directed(a, b)) || face_.find(directed(b, a)); }
 
   static std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
   static std::uint64_t undirected(int a, int b) { return a < b ? directed(a, b) : directed(b, a); }
 
 private:
-  std::unordered_map<std::uint64_t, int> face_;  // directed side -> face
+  struct SideHash {  // (points are numbered in order: the plain key would crowd a few buckets)
+    size_t operator()(std::uint64_t k) const {
+      const std::uint64_t h = k * 0x9E3779B97F4A7C15ull;
+      return size_t(h ^ (h >> 31));
+    }
+  };
+  // directed side -> face: a flat table (the post-pass builds one per sweep of 100k faces and
+  // looks up every side; std::unordered_map's node per entry made the lookups and allocations
+  // a fifth of the whole remesh of cad/joint.off).
+  FlatIndexMap<std::uint64_t, SideHash> face_;
 };
 
 }  // namespace mr::remesh
