@@ -45,10 +45,21 @@ constexpr double kLengthFloor = 30.0 * 3.14159265358979323846 / 180.0;
 // Sweeps of the post-pass that also search swap sequences against valence defects.
 constexpr int kDefectSweeps = 2;
 
-// What a swap of edge x-y (faces x,y,c and y,x,d) to c-d would do.
+// What a swap of edge x-y (faces x,y,c and y,x,d) to c-d would do. The angles are measured
+// when first asked for: the valence pass turns most candidates down on their valences alone.
 struct SwapCandidate {
   int x, y, c, d;
-  double min_angle_before, min_angle_after;
+  const std::vector<Point3>& points;
+  const std::array<int, 3>&f, &g;  // the faces now
+  double min_angle_before() const {
+    if (before_ < 0) before_ = std::min(min_angle(points, f), min_angle(points, g));
+    return before_;
+  }
+  double min_angle_after() const {
+    if (after_ < 0) after_ = std::min(min_angle(points, {x, d, c}), min_angle(points, {d, y, c}));
+    return after_;
+  }
+  mutable double before_ = -1, after_ = -1;
 };
 
 // Swaps edges of nearly flat face pairs of one patch, never a fixed (feature) edge, whenever
@@ -74,9 +85,7 @@ int swap_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, 
       const Point3 na = unit_normal(out.points[x], out.points[d], out.points[c]);
       const Point3 nb = unit_normal(out.points[d], out.points[y], out.points[c]);
       if (na * n < 0.9 || nb * n < 0.9) continue;
-      const std::array<int, 3> A = {x, d, c}, B = {d, y, c};
-      const SwapCandidate cand{x, y, c, d, std::min(min_angle(out.points, out.faces[fi]), min_angle(out.points, out.faces[p.g])),
-                               std::min(min_angle(out.points, A), min_angle(out.points, B))};
+      const SwapCandidate cand{x, y, c, d, out.points, out.faces[fi], out.faces[p.g]};
       if (!wanted(cand)) continue;
       sides.swap(out, p);
       ++swaps;
@@ -86,7 +95,7 @@ int swap_edges(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, 
 }
 
 int swap_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed, const std::vector<char>& region) {
-  return swap_edges(out, fixed, region, [](const SwapCandidate& s) { return s.min_angle_after > s.min_angle_before + 1e-6; });
+  return swap_edges(out, fixed, region, [](const SwapCandidate& s) { return s.min_angle_after() > s.min_angle_before() + 1e-6; });
 }
 
 // Valence: a free or line point wants 6 neighbours inside the surface and 4 on an open border
@@ -115,7 +124,7 @@ int valence_pass(OutputMesh& out, const std::unordered_set<std::uint64_t>& fixed
   return swap_edges(out, fixed, region, [&](const SwapCandidate& s) {
     const int before = deviation(s.x, 0) + deviation(s.y, 0) + deviation(s.c, 0) + deviation(s.d, 0);
     const int after = deviation(s.x, -1) + deviation(s.y, -1) + deviation(s.c, 1) + deviation(s.d, 1);
-    if (after >= before || s.min_angle_after < std::min(s.min_angle_before, floor)) return false;
+    if (after >= before || s.min_angle_after() < std::min(s.min_angle_before(), floor)) return false;
     valence[s.x]--, valence[s.y]--, valence[s.c]++, valence[s.d]++;
     return true;
   });
