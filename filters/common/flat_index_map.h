@@ -8,12 +8,22 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
 namespace mr {
 
-template <class Key, class Hash>
+/// A hash for 64-bit keys packed from two indices (edges, sides, grid cells): the slot is
+/// taken from the low bits, which the plain key would crowd into a few runs.
+struct PackedKeyHash {
+  size_t operator()(std::uint64_t k) const {
+    const std::uint64_t h = k * 0x9E3779B97F4A7C15ull;
+    return size_t(h ^ (h >> 31));
+  }
+};
+
+template <class Key, class Hash = PackedKeyHash>
 class FlatIndexMap {
 public:
   /// Room for n entries without growing.

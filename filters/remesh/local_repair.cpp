@@ -1,12 +1,11 @@
 #include "remesh/local_repair.h"
 
+#include "common/flat_index_map.h"
 #include "common/uniform_grid.h"
 #include "remesh/triangle_geometry.h"
 
 #include <algorithm>
 #include <cstdint>
-#include <unordered_map>
-#include <unordered_set>
 
 namespace mr::remesh {
 
@@ -41,14 +40,17 @@ std::vector<FrontSide> open_hole_around(OutputMesh& out, int patch, const std::v
       kept_patch.push_back(out.face_patch[f]);
     }
   }
-  std::unordered_set<std::uint64_t> kept_sides, initial;
+  // (Flat tables: a repair round scans the whole output, and node-based sets made these and
+  // bad_edges' count a fifth of box.STL's regrid.)
+  FlatIndexMap<std::uint64_t> kept_sides, initial;
+  kept_sides.reserve(3 * kept.size());
   for (const auto& t : kept)
-    for (int z = 0; z < 3; ++z) kept_sides.insert(directed(t[z], t[(z + 1) % 3]));
-  for (const auto& s : initial_front) initial.insert(directed(s[0], s[1]));
+    for (int z = 0; z < 3; ++z) kept_sides.emplace(directed(t[z], t[(z + 1) % 3]), 0);
+  for (const auto& s : initial_front) initial.emplace(directed(s[0], s[1]), 0);
   // The unmeshed part lies left of a side: a removed face's side a->b now borders the hole, and
   // is a front side where something stays on its right (a kept face, or the patch's border).
   std::vector<FrontSide> front;
-  auto borders = [&](int a, int b) { return kept_sides.count(directed(b, a)) || initial.count(directed(a, b)); };
+  auto borders = [&](int a, int b) { return kept_sides.find(directed(b, a)) || initial.find(directed(a, b)); };
   for (const auto& t : removed)
     for (int z = 0; z < 3; ++z)
       if (borders(t[z], t[(z + 1) % 3])) front.push_back({t[z], t[(z + 1) % 3]});
@@ -94,24 +96,29 @@ std::vector<int> stray_face_points(const OutputMesh& out, int patch, const Surfa
 }
 
 std::vector<int> faces_around(const OutputMesh& out, int patch, const std::vector<FrontSide>& front) {
-  std::unordered_set<int> on_front;
-  for (const auto& s : front) on_front.insert({s[0], s[1]});
+  std::vector<char> on_front(out.points.size(), 0);
+  for (const auto& s : front) on_front[size_t(s[0])] = on_front[size_t(s[1])] = 1;
   std::vector<int> faces;
   for (size_t f = 0; f < out.faces.size(); ++f) {
     const auto& t = out.faces[f];
-    if (out.face_patch[f] == patch && (on_front.count(t[0]) || on_front.count(t[1]) || on_front.count(t[2])))
+    if (out.face_patch[f] == patch && (on_front[size_t(t[0])] || on_front[size_t(t[1])] || on_front[size_t(t[2])]))
       faces.push_back(int(f));
   }
   return faces;
 }
 
 int bad_edges(const OutputMesh& out) {
-  std::unordered_map<std::uint64_t, int> count;  // directed side -> faces
+  FlatIndexMap<std::uint64_t> count;  // directed side -> faces
   count.reserve(out.faces.size() * 3);
+  int bad = 0;  // sides held by more than one face, each once (when its second face comes)
   for (const auto& t : out.faces)
-    for (int z = 0; z < 3; ++z) count[directed(t[z], t[(z + 1) % 3])]++;
-  int bad = 0;
-  for (const auto& [key, n] : count) bad += n > 1 ? 1 : 0;
+    for (int z = 0; z < 3; ++z) {
+      const std::uint64_t side = directed(t[z], t[(z + 1) % 3]);
+      const auto [n, added] = count.emplace(side, 1);
+      if (added) continue;
+      if (n == 1) ++bad;
+      count.assign(side, n + 1);
+    }
   return bad;
 }
 

@@ -68,16 +68,10 @@ public:
   static std::uint64_t undirected(int a, int b) { return a < b ? directed(a, b) : directed(b, a); }
 
 private:
-  struct SideHash {  // (points are numbered in order: the plain key would crowd a few buckets)
-    size_t operator()(std::uint64_t k) const {
-      const std::uint64_t h = k * 0x9E3779B97F4A7C15ull;
-      return size_t(h ^ (h >> 31));
-    }
-  };
   // directed side -> face: a flat table (the post-pass builds one per sweep of 100k faces and
   // looks up every side; std::unordered_map's node per entry made the lookups and allocations
   // a fifth of the whole remesh of cad/joint.off).
-  FlatIndexMap<std::uint64_t, SideHash> face_;
+  FlatIndexMap<std::uint64_t> face_;
 };
 
 }  // namespace mr::remesh
