@@ -24,6 +24,19 @@ double distance_to(const SurfaceLocator& locator, const Point3& p, int start, do
   return project(locator, p, start, size, reach).distance;
 }
 
+/// Some face of `locator`'s surface lies within `radius` of p (`near`: scratch).
+bool some_face_within(const SurfaceLocator& locator, const Point3& p, double radius, std::vector<int>& near) {
+  locator.faces_near(p, radius, near);
+  const Surface& s = locator.surface();
+  std::array<double, 3> bary;
+  for (int f : near) {
+    const auto& t = s.faces[size_t(f)];
+    if ((closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]], bary) - p).Norm() <= radius)
+      return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 double size_at_point(const OutputMesh& out, const SurfaceLocator& locator, const SizeField& size, int v) {
@@ -74,7 +87,15 @@ Measures measure(const OutputMesh& out, const SurfaceLocator& input_locator, con
   const Surface output = Surface::from_arrays(out.points, out.faces, {});
   const SurfaceLocator out_locator(output, size.max_size());
   const Surface& in = input_locator.surface();
-  for (const auto& p : in.points) haus = std::max(haus, distance_to(out_locator, p, -1, size.max_size(), reach));
+  std::vector<int> near;
+  for (const auto& p : in.points) {
+    // A vertex this near some output face cannot raise `haus` (distance_to may return up to a
+    // distance tie more than the nearest face's distance): one look at the few faces within it
+    // settles most vertices of a fine input without the search (832k faces: a tenth of a remesh).
+    const double settled = haus - 2 * (out_locator.rounding_length() + 1e-12 * haus);
+    if (settled > 0 && some_face_within(out_locator, p, settled, near)) continue;
+    haus = std::max(haus, distance_to(out_locator, p, -1, size.max_size(), reach));
+  }
   m.hausdorff = haus;
   return m;
 }
