@@ -47,7 +47,9 @@ TEST(RemeshAngleSmoothing, PinchedFreePointMovesToWhereItsFacesPassTheGoal) {
   EXPECT_GT(out.points[v][1], 0.03);          // away from the border's line points
   EXPECT_GE(out.host[v], 0);
   for (size_t x = 0; x < out.points.size(); ++x)
-    if (int(x) != v) EXPECT_EQ(out.points[x], before.points[x]);
+    if (int(x) != v) {
+      EXPECT_EQ(out.points[x], before.points[x]);
+    }
 }
 
 TEST(RemeshAngleSmoothing, PointsNotMovableOrAtTheGoalStay) {
