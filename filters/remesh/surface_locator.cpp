@@ -102,6 +102,15 @@ SurfaceLocator::SurfaceLocator(const Surface& surface, double cell) : surface_(s
         }
   }
   stamp_.assign(surface.faces.size(), 0);
+  face_box_.resize(surface.faces.size());
+  for (size_t f = 0; f < surface.faces.size(); ++f) {
+    const auto& t = surface.faces[f];
+    const Point3 &a = surface.points[t[0]], &b = surface.points[t[1]], &c = surface.points[t[2]];
+    for (int axis = 0; axis < 3; ++axis) {
+      face_box_[f][size_t(axis)] = std::min({a[axis], b[axis], c[axis]});
+      face_box_[f][size_t(3 + axis)] = std::max({a[axis], b[axis], c[axis]});
+    }
+  }
   double area = 0;
   for (size_t f = 0; f < surface.faces.size(); ++f) {
     const auto& t = surface.faces[f];
@@ -133,11 +142,9 @@ void SurfaceLocator::faces_near(const Point3& p, double radius, std::vector<int>
   // queries (host of a side, normals at a line point) have a tiny radius: faces whose bounding box
   // misses the query box are left out before the sort, as no point of them is within reach.
   auto box_misses = [&](int f) {
-    const auto& t = surface_.faces[f];
-    const Point3 &a = surface_.points[t[0]], &b = surface_.points[t[1]], &c = surface_.points[t[2]];
+    const auto& fb = face_box_[size_t(f)];
     for (int axis = 0; axis < 3; ++axis)
-      if (std::max({a[axis], b[axis], c[axis]}) < box_lo[axis] || std::min({a[axis], b[axis], c[axis]}) > box_hi[axis])
-        return true;
+      if (fb[3 + axis] < box_lo[axis] || fb[axis] > box_hi[axis]) return true;
     return false;
   };
   auto lo = cell_of(box_lo), hi = cell_of(box_hi);

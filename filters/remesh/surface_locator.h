@@ -84,6 +84,9 @@ private:
   double mean_face_area_ = 0;
   Point3 origin_;
   std::unordered_map<Key, std::vector<int>> grid_;
+  // Per face: its bounding box (min x, y, z, max x, y, z). A grid cell of a fine input holds
+  // hundreds of faces, each tested against the query box.
+  std::vector<std::array<double, 6>> face_box_;
   mutable std::vector<int> stamp_;  // per-face visit marks for the walk and the grid query
   mutable int stamp_value_ = 0;
 };
