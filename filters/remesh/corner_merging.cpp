@@ -13,29 +13,28 @@ namespace mr::remesh {
 
 namespace {
 
-// The faces on either side of each ridge edge, by directed edge.
-using RidgeFaces = std::map<std::pair<int, int>, int>;
-
-RidgeFaces ridge_faces(const features::Result& fr, const Surface& s) {
-  RidgeFaces out;
-  for (size_t f = 0; f < s.faces.size(); ++f)
+// The last face (in face order) whose ridge side runs a -> b, or -1.
+int ridge_face(const features::Result& fr, const Surface& s, const FaceRings& rings, int a, int b) {
+  int found = -1;
+  for (int k = rings.begin[a]; k < rings.begin[a + 1]; ++k) {
+    const int f = rings.item[k];
     for (int z = 0; z < 3; ++z)
-      if (fr.ridge[f][z]) out[{s.faces[f][z], s.faces[f][(z + 1) % 3]}] = int(f);
-  return out;
+      if (fr.ridge[f][z] && s.faces[f][z] == a && s.faces[f][(z + 1) % 3] == b) found = f;
+  }
+  return found;
 }
 
 // A step: lines i and j lie within kSliverGap x the smallest size on them of each other, and
 // the surface beyond them goes on the same way (the faces across each line's first edge from
-// the patch they share within kStepTurn of each other). Around a thin plate's rim the surfaces
+// the patch they share within kStepTurnDeg of each other). Around a thin plate's rim the surfaces
 // beyond face apart: merged there, its top and bottom would meet in a knife edge.
 constexpr double kStepTurnDeg = 30.0;
-bool step_twins(const features::Result& fr, const Surface& s, const SizeField& size, const RidgeFaces& rf, size_t i,
+bool step_twins(const features::Result& fr, const Surface& s, const FaceRings& rings, const SizeField& size, size_t i,
                 size_t j) {
   if (!within_sliver_gap(s, size, fr.lines[i].vertices, fr.lines[j].vertices)) return false;
   auto sides = [&](size_t line) {
     const auto& v = fr.lines[line].vertices;
-    auto x = rf.find({v[0], v[1]}), y = rf.find({v[1], v[0]});
-    return std::array<int, 2>{x == rf.end() ? -1 : x->second, y == rf.end() ? -1 : y->second};
+    return std::array<int, 2>{ridge_face(fr, s, rings, v[0], v[1]), ridge_face(fr, s, rings, v[1], v[0])};
   };
   const auto si = sides(i), sj = sides(j);
   if (std::min({si[0], si[1], sj[0], sj[1]}) < 0) return false;
@@ -43,7 +42,7 @@ bool step_twins(const features::Result& fr, const Surface& s, const SizeField& s
     for (int q : sj)
       if (s.group[p] == s.group[q]) {  // the strip between them; beyond it, the other faces
         const int beyond_i = si[0] == p ? si[1] : si[0], beyond_j = sj[0] == q ? sj[1] : sj[0];
-        return s.face_normal[beyond_i] * s.face_normal[beyond_j] >= std::cos(kStepTurnDeg * M_PI / 180.0);
+        return s.face_normal[beyond_i] * s.face_normal[beyond_j] >= std::cos(kStepTurnDeg * 3.14159265358979323846 / 180.0);
       }
   return false;
 }
@@ -65,7 +64,8 @@ CornerMerging CornerMerging::none(const features::Result& fr, const Surface& s) 
   return cm;
 }
 
-CornerMerging merge_close_corners(const features::Result& fr, const Surface& s, const SizeField& size) {
+CornerMerging merge_close_corners(const features::Result& fr, const Surface& s, const FaceRings& rings,
+                                  const SizeField& size) {
   const int n = int(s.points.size());
   CornerMerging cm = CornerMerging::none(fr, s);
   std::vector<char> corner(n, 0);
@@ -163,9 +163,8 @@ CornerMerging merge_close_corners(const features::Result& fr, const Surface& s, 
   };
   auto ends_of = [&](size_t i) -> std::pair<int, int> { return std::minmax(fr.lines[i].vertices.front(), fr.lines[i].vertices.back()); };
   auto key_of = [&](size_t i) -> std::pair<int, int> { return std::minmax(mapped(fr.lines[i].vertices.front()), mapped(fr.lines[i].vertices.back())); };
-  const RidgeFaces rf = ridge_faces(fr, s);
   auto refuse_lens = [&](size_t i, size_t j) {
-    if (step_twins(fr, s, size, rf, i, j)) return;
+    if (step_twins(fr, s, rings, size, i, j)) return;
     for (int x : {fr.lines[i].vertices.front(), fr.lines[i].vertices.back(), fr.lines[j].vertices.front(), fr.lines[j].vertices.back()})
       if (group_of[x] >= 0 && corner[x]) refused[group_of[x]] = 1;
   };

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "features/feature_lines.h"
+#include "remesh/face_rings.h"
 #include "remesh/size_field.h"
 #include "remesh/surface_locator.h"
 
@@ -29,6 +30,8 @@ struct CornerMerging {
 /// along one run of its border (else the patch would be pinched at the point), when no longer
 /// line joins two of its corners, and when all its corners lie within kTinyLine x size of the
 /// one that represents it (the corner with the most lines, then the lowest index).
-CornerMerging merge_close_corners(const features::Result& features, const Surface& surface, const SizeField& size);
+/// `rings`: the faces around each vertex of `surface`.
+CornerMerging merge_close_corners(const features::Result& features, const Surface& surface, const FaceRings& rings,
+                                  const SizeField& size);
 
 }  // namespace mr::remesh

@@ -2,6 +2,7 @@
 
 #include "common/segment_geometry.h"
 #include "remesh/corner_merging.h"
+#include "remesh/face_rings.h"
 #include "remesh/strip_staggering.h"
 
 #include <algorithm>
@@ -13,18 +14,6 @@
 namespace mr::remesh {
 
 namespace {
-
-// Faces around each vertex (CSR).
-struct VertexFaces {
-  std::vector<int> begin, face;
-  explicit VertexFaces(const Surface& s) : begin(s.points.size() + 1, 0) {
-    for (const auto& f : s.faces) for (int v : f) begin[v + 1]++;
-    for (size_t i = 1; i < begin.size(); ++i) begin[i] += begin[i - 1];
-    face.resize(begin.back());
-    std::vector<int> fill(begin.begin(), begin.end() - 1);
-    for (size_t f = 0; f < s.faces.size(); ++f) for (int v : s.faces[f]) face[fill[v]++] = int(f);
-  }
-};
 
 double distance_to_polyline(const Point3& p, const std::vector<Point3>& to) {
   double best = to.empty() ? std::numeric_limits<double>::max() : (p - to[0]).Norm();
@@ -70,7 +59,7 @@ struct Slivers {
   std::vector<char> dropped_patch;
 };
 
-Slivers find_slivers(const features::Result& fr, const Surface& s, const VertexFaces& vf, const SizeField& size,
+Slivers find_slivers(const features::Result& fr, const Surface& s, const FaceRings& vf, const SizeField& size,
                      const CornerMerging& merging) {
   Slivers sl{std::vector<int>(fr.lines.size(), -1), std::vector<char>(fr.patch_count, 0)};
   std::vector<int> patch_faces(fr.patch_count, 0);
@@ -93,7 +82,7 @@ Slivers find_slivers(const features::Result& fr, const Surface& s, const VertexF
     std::set<int> seen;
     for (int v : on_lines)
       for (int k = vf.begin[v]; k < vf.begin[v + 1]; ++k) {
-        const int f = vf.face[k];
+        const int f = vf.item[k];
         if (!seen.insert(f).second) continue;
         const auto& t = s.faces[f];
         if (on_lines.count(t[0]) && on_lines.count(t[1]) && on_lines.count(t[2])) faces_between[s.group[f]]++;
@@ -137,11 +126,11 @@ std::vector<char> find_thin_patches(const features::Result& fr, const Surface& s
 }
 
 // Patches on either side of a line: those of the faces on its first input edge.
-std::vector<int> bordered_patches(const Surface& s, const VertexFaces& vf, const std::vector<int>& chain) {
+std::vector<int> bordered_patches(const Surface& s, const FaceRings& vf, const std::vector<int>& chain) {
   std::vector<int> groups;
   for (int k = vf.begin[chain[0]]; k < vf.begin[chain[0] + 1]; ++k) {
-    const auto& t = s.faces[vf.face[k]];
-    if (std::count(t.begin(), t.end(), chain[1]) > 0) groups.push_back(s.group[vf.face[k]]);
+    const auto& t = s.faces[vf.item[k]];
+    if (std::count(t.begin(), t.end(), chain[1]) > 0) groups.push_back(s.group[vf.item[k]]);
   }
   std::sort(groups.begin(), groups.end());
   groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
@@ -149,12 +138,12 @@ std::vector<int> bordered_patches(const Surface& s, const VertexFaces& vf, const
 }
 
 // The line's polyline and its points with their arc lengths along it, for sliding them later.
-LinePath line_path(const Surface& s, const VertexFaces& vf, const std::vector<int>& chain, const std::vector<int>& pts,
+LinePath line_path(const Surface& s, const FaceRings& vf, const std::vector<int>& chain, const std::vector<int>& pts,
                    std::vector<double> arc, bool may_slide) {
   LinePath path;
   for (int v : chain) path.polyline.push_back(s.points[v]);
   for (size_t j = 0; j + 1 < chain.size(); ++j)
-    path.segment_host.push_back(vf.begin[chain[j]] < vf.begin[chain[j] + 1] ? vf.face[vf.begin[chain[j]]] : -1);
+    path.segment_host.push_back(vf.begin[chain[j]] < vf.begin[chain[j] + 1] ? vf.item[vf.begin[chain[j]]] : -1);
   path.points = pts;
   path.arc = std::move(arc);
   path.slidable.assign(pts.size(), may_slide ? 1 : 0);
@@ -192,14 +181,14 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
   (void)mesh;
   FeatureFront ff;
   ff.patch_front.resize(fr.patch_count);
-  const VertexFaces vf(s);
-  const CornerMerging merging = merge_tiny_lines ? merge_close_corners(fr, s, size) : CornerMerging::none(fr, s);
+  const FaceRings vf(s.points.size(), s.faces);
+  const CornerMerging merging = merge_tiny_lines ? merge_close_corners(fr, s, vf, size) : CornerMerging::none(fr, s);
   const auto& rep = merging.representative;
   ff.merged_corners = merging.merged_corners;
   std::map<int, int> corner_point;
   for (int c : fr.corners)
     if (rep[c] == c) {
-      const int host = vf.begin[c] < vf.begin[c + 1] ? vf.face[vf.begin[c]] : -1;
+      const int host = vf.begin[c] < vf.begin[c + 1] ? vf.item[vf.begin[c]] : -1;
       corner_point[c] = out.add_point(s.points[c], host, PointKind::Corner);
     }
   for (int c : fr.corners) {
@@ -288,7 +277,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
     auto end_point = [&](int v) {
       auto it = corner_point.find(v);
       if (it != corner_point.end()) return it->second;
-      const int host = vf.begin[v] < vf.begin[v + 1] ? vf.face[vf.begin[v]] : -1;
+      const int host = vf.begin[v] < vf.begin[v + 1] ? vf.item[vf.begin[v]] : -1;
       return out.add_point(s.points[v], host, PointKind::Line);
     };
     if (twin >= 0) {
@@ -307,7 +296,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       arc[i] = along[seg] + u * lengths[seg];
       const Point3 p = s.points[chain[seg]] * (1 - u) + s.points[chain[seg + 1]] * u;
       const int v0 = chain[seg];
-      const int host = vf.begin[v0] < vf.begin[v0 + 1] ? vf.face[vf.begin[v0]] : -1;
+      const int host = vf.begin[v0] < vf.begin[v0 + 1] ? vf.item[vf.begin[v0]] : -1;
       pts[i] = out.add_point(p, host, PointKind::Line);
     }
     if (twin < 0) pts[n] = line.closed ? pts[0] : end_point(chain.back());
@@ -323,7 +312,7 @@ FeatureFront discretise_features(const TriMesh& mesh, const features::Result& fr
       // the way that face runs the edge (so the patch lies to the side's left).
       std::set<std::pair<int, int>> added;
       for (int k = vf.begin[va]; k < vf.begin[va + 1]; ++k) {
-        const int f = vf.face[k];
+        const int f = vf.item[k];
         if (ff.dropped_patch[s.group[f]]) continue;
         const auto& t = s.faces[f];
         for (int z = 0; z < 3; ++z) {

@@ -100,6 +100,13 @@ void expect_closed_sphere(const TriMesh& out) {
   EXPECT_EQ(int(out.vert.size()) - int(edges.size()) + int(out.face.size()), 2);
 }
 
+// A regrid with no side left open, closed as a sphere, whose worst angle is at least `degrees`.
+void expect_whole_and_at_least(const remesh::Result& r, const TriMesh& out, double degrees) {
+  EXPECT_EQ(r.unmeshed_sides, 0);
+  expect_closed_sphere(out);
+  EXPECT_GE(r.min_angle_deg, degrees);
+}
+
 int selected_vertices(const TriMesh& out) {  // the output's corners
   int n = 0;
   for (const auto& v : out.vert) n += v.IsS() ? 1 : 0;
@@ -116,10 +123,8 @@ TEST(RemeshCornerMerging, ATinyCutOffCornerBecomesOnePointAndItsPatchGoes) {
   const remesh::Result r = remesh_at(m, 0.2, out);
   EXPECT_EQ(r.corners, 10);
   EXPECT_EQ(r.merged_corners, 2);
-  EXPECT_EQ(r.unmeshed_sides, 0);
   EXPECT_EQ(selected_vertices(out), 8);  // the seven cube corners and the one point of the cut
-  expect_closed_sphere(out);
-  EXPECT_GE(r.min_angle_deg, 30.0);  // 30.79 measured; 4.56 with every corner kept
+  expect_whole_and_at_least(r, out, 30.0);  // 30.79 measured; 4.56 with every corner kept
   // The merged point is one of the cut's corners, within the cut of the cube's corner.
   double closest = 1e9;
   for (const auto& v : out.vert) closest = std::min(closest, (v.cP() - Point3(1, 1, 1)).Norm());
@@ -144,9 +149,7 @@ TEST(RemeshCornerMerging, AStepLowerThanATenthOfTheSizeClosesWithItsTwoLinesShar
   const remesh::Result r = remesh_at(m, 0.2, out);
   EXPECT_EQ(r.merged_corners, 2);
   EXPECT_EQ(r.merged_lines, 1);
-  EXPECT_EQ(r.unmeshed_sides, 0);
-  expect_closed_sphere(out);
-  EXPECT_GE(r.min_angle_deg, 30.0);  // 35.19 measured; 2.10 with the step's strip meshed
+  expect_whole_and_at_least(r, out, 30.0);  // 35.19 measured; 2.10 with the step's strip meshed
 }
 
 TEST(RemeshCornerMerging, AThinPlatesRimStaysAStripOfOneLayer) {
