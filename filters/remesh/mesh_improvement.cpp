@@ -8,6 +8,7 @@
 #include "remesh/side_faces.h"
 #include "remesh/star_shape.h"
 #include "remesh/triangle_geometry.h"
+#include "remesh/wedge_relaxing.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -182,7 +183,7 @@ std::vector<char> region_around(const OutputMesh& out, const std::vector<int>& m
 
 ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>& feature_edges,
                                const SurfaceLocator& locator, const SizeField& size, int iterations, std::vector<LinePath> line_paths,
-                               const std::vector<int>& moved) {
+                               const std::vector<int>& moved, bool relax_wedges) {
   std::vector<char> region = region_around(out, moved);
   std::vector<char> movable(region);
   for (int v : moved) movable[v] = 0;
@@ -214,8 +215,12 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
   // Line points go or slide last, where swaps and smoothing left bad faces around them; the
   // free points around a changed one are smoothed again.
   for (int it = 0; it < iterations; ++it) {
-    std::vector<int> changed = remove_line_points(out, line_paths, feature_edges, locator, size, kRemoveBelow);
-    r.line_points_removed += int(changed.size());
+    std::vector<int> changed;
+    if (relax_wedges) changed = relax_wedge_tips(out, line_paths, feature_edges, locator, size);
+    r.relaxed_wedges += int(changed.size());
+    const std::vector<int> removed = remove_line_points(out, line_paths, feature_edges, locator, size, kRemoveBelow);
+    r.line_points_removed += int(removed.size());
+    changed.insert(changed.end(), removed.begin(), removed.end());
     const std::vector<int> slid = slide_line_points(out, line_paths, feature_edges, kSlideBelow, kSlideGoal);
     r.moves += int(slid.size());
     changed.insert(changed.end(), slid.begin(), slid.end());

@@ -25,15 +25,18 @@ struct ImprovementResult {
   int collapsed = 0;  ///< free points removed by collapsing a short edge
   int split = 0;      ///< long edges split at their middle
   int line_points_removed = 0;  ///< line points whose two segments became one (line_point_removal.h)
+  int relaxed_wedges = 0;       ///< wedge tips whose lines now share their first segment (wedge_relaxing.h)
 };
 
 /// `feature_edges` are output edges that must stay (either orientation); the points of
 /// `line_paths` slide along them or, where the line does not need them, go (none given: line
 /// points stay); `feature_edges` then follow. `moved`: points just moved
 /// (snapped onto input vertices) that must stay there; the pass then works only within two edges
-/// of them, the rest having had its pass already (empty: the whole mesh).
+/// of them, the rest having had its pass already (empty: the whole mesh). `relax_wedges`: the
+/// lines at wedge tips may share their first segment (wedge_relaxing.h).
 ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>& feature_edges,
                                const SurfaceLocator& locator, const SizeField& size, int iterations,
-                               std::vector<LinePath> line_paths = {}, const std::vector<int>& moved = {});
+                               std::vector<LinePath> line_paths = {}, const std::vector<int>& moved = {},
+                               bool relax_wedges = false);
 
 }  // namespace mr::remesh

@@ -378,8 +378,10 @@ Result finish(Fronts& run, TriMesh& output) {
   progress(params, 80, "Improving: swaps and smoothing");
   // (Line points the line does not need may go: the feature edges follow.)
   std::vector<std::array<int, 2>> feature_edges = ff.feature_edges;
-  const ImprovementResult ir = improve_mesh(out, feature_edges, locator, size, params.improvement_iterations, ff.line_paths);
+  const ImprovementResult ir =
+      improve_mesh(out, feature_edges, locator, size, params.improvement_iterations, ff.line_paths, {}, params.relax_wedges);
   result.line_points_removed = ir.line_points_removed;
+  result.relaxed_wedges = ir.relaxed_wedges;
   result.feature_edges = int(feature_edges.size());
   result.swaps = ir.swaps;
   result.smoothed = ir.moves;

@@ -34,6 +34,8 @@ struct Params {
   Recovery recovery = Recovery::Linear;
   int improvement_iterations = 3;  ///< swap and smoothing sweeps (0 = off)
   bool use_selected_edges_as_ridges = false;  ///< also keep the input's face-edge selection (FaceEdgeS) as ridges
+  /// Lines meeting at a wedge under 30 degrees may share their first segment (wedge_relaxing.h).
+  bool relax_wedges = false;
   std::vector<Point3> source_points;  ///< point sources of size
   std::vector<double> source_sizes;
   std::vector<std::array<int, 2>> source_segments;  ///< line sources: pairs of source points
@@ -76,6 +78,7 @@ struct Result {
   int collapsed = 0;            ///< post-pass: free points removed at short edges
   int split = 0;                ///< post-pass: long edges split at their middle
   int line_points_removed = 0;  ///< post-pass: line points whose two segments became one
+  int relaxed_wedges = 0;       ///< post-pass: wedge tips whose two lines now share their first segment
   int snapped = 0;              ///< free points moved onto input vertices the output cut off
   int surface_swaps = 0;        ///< edges swapped to follow the input across creases not kept
   double min_angle_deg = 0;     ///< worst triangle angle

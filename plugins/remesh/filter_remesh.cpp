@@ -76,6 +76,12 @@ RichParameterList Remeshing::initParameterList(const QAction*, const MeshDocumen
   list.addParam(RichBool("use_selected_edges_as_ridges", d.use_selected_edges_as_ridges, "Keep selected edges as ridges",
                          "Also keep the current per-face-edge selection as feature lines (e.g. the intersection "
                          "lines a union selects), besides the edges the ridge angle finds."));
+  list.addParam(RichBool("relax_wedges", d.relax_wedges, "Relax narrow wedges",
+                         "Where two feature lines leave a point at under 30 degrees, the face between them keeps "
+                         "that angle as long as both lines are kept. With this on, the two lines share their first "
+                         "segment there (their first points merge, halfway between them on the surface, when they "
+                         "are at most 0.6 x the size apart and the merge raises the smallest angle): the lines leave "
+                         "the input by at most half the wedge's width near its tip."));
   list.addParam(RichBool("use_size_source", false, "Use a size source layer",
                          "Limit the size near the vertices of another layer, each vertex carrying the wanted size "
                          "in its vertex quality."));
@@ -109,6 +115,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
   p.recovery = mr::remesh::Recovery(recovery);
   p.improvement_iterations = params.getInt("improvement_iterations");
   p.use_selected_edges_as_ridges = params.getBool("use_selected_edges_as_ridges");
+  p.relax_wedges = params.getBool("relax_wedges");
   if (params.getBool("use_size_source")) {
     const MeshModel* source = md.getMesh(params.getMeshId("size_source"));
     if (source == nullptr) throw MLException(QString(name) + ": the size source layer does not exist");
@@ -153,7 +160,8 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       int(output.vert.size()), int(output.face.size()), r.min_angle_deg, r.unmeshed_sides, ms);
   if (r.wedge_tips > 0)
     log("%d face corners lie at the tip of a wedge between two feature lines under %.0f deg (the narrowest "
-        "%.2f deg): no mesh keeping the lines does better there; every other corner is %.2f deg or more",
+        "%.2f deg): no mesh keeping the lines does better there (relax_wedges lets them share a first "
+        "segment); every other corner is %.2f deg or more",
         r.wedge_tips, mr::remesh::kWedgeBoundDeg, r.min_wedge_angle_deg, r.min_angle_off_wedges_deg);
   if (r.kept_crumples)
     log("Meshed again keeping the crumpled patches%s: the first meshing left front sides open or points "
@@ -191,6 +199,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"missing_feature_edges", QVariant(r.missing_feature_edges)},
       {"flat_pockets_removed", QVariant(r.flat_pockets_removed)},
       {"line_points_removed", QVariant(r.line_points_removed)},
+      {"relaxed_wedges", QVariant(r.relaxed_wedges)},
       {"kept_folded_slivers", QVariant(r.kept_folded_slivers)},
       {"kept_crumples", QVariant(r.kept_crumples)},
       {"non_manifold_points", QVariant(r.non_manifold_points)},

@@ -16,7 +16,7 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
           target_length=None, target_percent: float = 1.0, ridge_angle: float = 30.0,
           corner_angle: float = 45.0, improvement_iterations: int = 5,
           transfer_attributes: bool = False, regrid_exact_union_too: bool = True,
-          min_line_length_factor: float = 2.0) -> dict:
+          min_line_length_factor: float = 2.0, relax_wedges: bool = False) -> dict:
     """Unites the bodies of ``ms`` into a new layer (which becomes current).
 
     ``sliver_max_deviation`` (fraction of the bounding-box diagonal) defaults to the
@@ -54,6 +54,11 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
     stepped union and at 31.3 from the exact one (1% of the diagonal). Elsewhere the exact
     arrangement's needles make worse ridges (box.STL, randomly turned tori).
     Cost: a second union and regrid, where the first regrid is under 30 degrees.
+
+    ``relax_wedges``: where an intersection line and another line leave a point at under 30
+    degrees (a line running into a crease at a shallow angle, a cluster's triple points), they
+    may share their first segment (the remesh filter's parameter): the wedge's face goes, and the
+    lines leave the union there by at most half the wedge's width one element from its tip.
     """
     if bodies not in BODIES:
         raise ValueError(f"bodies must be one of {sorted(BODIES)}, got {bodies!r}")
@@ -83,7 +88,7 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
             r = ms.meshing_advancing_front_remesh(
                 target_length=length, ridge_angle=ridge_angle, corner_angle=corner_angle,
                 improvement_iterations=improvement_iterations, use_selected_edges_as_ridges=True,
-                min_line_length=min_line)
+                min_line_length=min_line, relax_wedges=relax_wedges)
             return r, ms.current_mesh_id()
 
         result["remesh"], regrid_id = regrid(union_id)

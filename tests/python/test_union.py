@@ -677,6 +677,64 @@ def test_pipeline_regrid_of_rabbit_obj_has_no_wedge_the_sliver_step_folded(targe
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
+def box_and_turned_slab(alpha_deg):
+    """Box [0,2]x[0,2]x[0,1] and a slab whose face through (1, 0) is turned by ``alpha_deg`` from
+    the box's front top edge: the box's top keeps a wedge of that angle between the edge and the
+    intersection line."""
+    ms = pymeshlab.MeshSet()
+    ms.create_cube(size=1.0)
+    unit, faces = ms.current_mesh().vertex_matrix() + 0.5, ms.current_mesh().face_matrix()
+    a = np.radians(alpha_deg)
+    slab = unit * [6.0, 4.0, 1.5] + [-3.0, 0.0, 0.5]  # (along the face, away from it, z)
+    xy = np.array([1.0, 0.0]) + np.outer(slab[:, 0], [np.cos(a), np.sin(a)]) + np.outer(slab[:, 1], [-np.sin(a), np.cos(a)])
+    out = pymeshlab.MeshSet()
+    out.add_mesh(pymeshlab.Mesh(unit * [2.0, 2.0, 1.0], faces))
+    out.add_mesh(pymeshlab.Mesh(np.c_[xy, slab[:, 2]], faces))
+    return out
+
+
+@pytest.mark.parametrize("alpha", [15.0, 20.0])
+def test_pipeline_relax_wedges_lets_a_line_and_a_crease_share_their_first_segment(alpha):
+    # Kept apart, the intersection line and the box's edge leave their meeting points at alpha:
+    # two wedge tips of exactly alpha. Relaxed, their first points merge halfway and the next
+    # faces between them see about twice the angle: at 1% every face reaches 30 degrees
+    # (measured 30.02 and 30.47), and the regrid and the union stay within 0.25 and 0.17 x the
+    # size of each other (the lines' detour at the tips; 0.19 and 0.14 the other way).
+    from meshregrid import pipeline_union
+    kept = box_and_turned_slab(alpha)
+    plain = pipeline_union.union(kept, remesh=True, target_percent=1.0)["remesh"]
+    assert plain["wedge_tips"] >= 1 and plain["min_wedge_angle"] == pytest.approx(alpha, abs=1e-6)
+    ms = box_and_turned_slab(alpha)
+    r = pipeline_union.union(ms, remesh=True, target_percent=1.0, relax_wedges=True)
+    relaxed = r["remesh"]
+    assert relaxed["relaxed_wedges"] >= 2 and relaxed["wedge_tips"] == 0
+    assert relaxed["min_angle"] >= 30.0 and angles(ms.current_mesh()).min() >= 30.0
+    assert relaxed["unmeshed_sides"] == 0 and relaxed["missing_feature_edges"] == 0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    far = one_way_hausdorff(ms, r["union_layer"], r["remesh_layer"], 200000)
+    back = one_way_hausdorff(ms, r["remesh_layer"], r["union_layer"], 200000)
+    assert max(far, back) <= 0.3 * relaxed["target_length"]
+
+
+@pytest.mark.parametrize("target_percent", [1.0, 2.0])
+def test_pipeline_relax_wedges_takes_rabbit_obj_to_30_degrees_everywhere(target_percent):
+    # rabbit.obj's one wedge (26.33 degrees, an intersection line meeting a crease of the input)
+    # is relaxed: every face of the regrid has 30 degrees (measured 30.30 and 30.42), and the
+    # distance to the union (hausdorff_rel) stays as it was, 0.005 and 0.010 of the diagonal.
+    from meshregrid import pipeline_union
+    ms, _ = multicomponent("rabbit.obj")
+    ms.set_current_mesh(0)
+    r = pipeline_union.union(ms, bodies="components", remesh=True, target_percent=target_percent,
+                             regrid_exact_union_too=False, relax_wedges=True)
+    regrid = r["remesh"]
+    assert regrid["unmeshed_sides"] == 0 and regrid["relaxed_wedges"] >= 1 and regrid["wedge_tips"] == 0
+    assert regrid["min_angle"] >= 30.0 and angles(ms.current_mesh()).min() >= 30.0
+    assert regrid["hausdorff_rel"] <= 0.0055 * target_percent
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
+
 def test_pipeline_breaks_a_tie_at_a_shared_wedge_by_the_angles_off_the_wedges():
     # fuzz_union --models seed 32 at 1%: both regrids keep the same 7.0144250828-degree wedge;
     # the exact union's won by 1e-14 of a degree with a face of 7.72 degrees off the wedges,

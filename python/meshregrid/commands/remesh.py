@@ -23,6 +23,8 @@ def add_arguments(p):
     p.add_argument("--gradation", type=float, default=1.3, help="size gradation >= 1 (default 1.3)")
     p.add_argument("--recovery", choices=["linear", "closest", "quadratic", "cubic"], default="linear",
                    help="surface recovery of the new points (default linear)")
+    p.add_argument("--relax-wedges", action="store_true",
+                   help="lines leaving a point at under 30 degrees may share their first segment")
     p.add_argument("--no-progress", action="store_true", help="do not print the filter's progress")
 
 
@@ -36,7 +38,8 @@ def run(args) -> int:
     result = pipeline_remesh.remesh(
         ms, target_length=args.target_length, target_percent=args.target_percent, ridge_angle=args.ridge_angle,
         corner_angle=args.corner_angle, max_surface_error=args.max_surface_error, gradation=args.gradation,
-        recovery=args.recovery, min_line_length=args.min_line_length, progress=not args.no_progress and sys.stdout.isatty())
+        recovery=args.recovery, min_line_length=args.min_line_length, progress=not args.no_progress and sys.stdout.isatty(),
+        relax_wedges=args.relax_wedges)
     ms.save_current_mesh(args.output)
     print(json.dumps(result, indent=2, sort_keys=True))
     return 0 if result["unmeshed_sides"] == 0 else 3

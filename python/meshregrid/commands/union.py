@@ -25,6 +25,8 @@ def add_arguments(p):
     size.add_argument("--target-percent", type=float, default=1.0,
                       help="remesh: element size in percent of the bounding-box diagonal (default 1)")
     p.add_argument("--ridge-angle", type=float, default=30.0, help="remesh: ridge angle in degrees (default 30)")
+    p.add_argument("--relax-wedges", action="store_true",
+                   help="remesh: lines leaving a point at under 30 degrees may share their first segment")
 
 
 def write_polylines(mesh, path) -> None:
@@ -55,7 +57,7 @@ def run(args) -> int:
         ms, bodies="components" if args.components else "layers", sliver_angle=args.sliver_angle,
         sliver_max_deviation=args.sliver_max_deviation, lines_layer=bool(args.lines), remesh=args.remesh,
         target_length=args.target_length, target_percent=args.target_percent, ridge_angle=args.ridge_angle,
-        transfer_attributes=args.transfer_attributes)
+        transfer_attributes=args.transfer_attributes, relax_wedges=args.relax_wedges)
     union_id = result["union_layer"]
     if args.lines:
         write_polylines(ms.mesh(union_id + 1), args.lines)

@@ -1,0 +1,164 @@
+#include "remesh/wedge_relaxing.h"
+
+#include "remesh/mesh_measures.h"
+#include "remesh/point_stars.h"
+#include "remesh/triangle_geometry.h"
+#include "remesh/wedge_tips.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <unordered_set>
+
+namespace mr::remesh {
+
+namespace {
+
+// New faces may not turn by more than acos(0.7) from the faces they replace (as for line points).
+constexpr double kFoldCos = 0.7;
+
+// A point's place on a path: (path, index).
+using Place = std::pair<int, int>;
+
+class WedgeRelaxing {
+public:
+  WedgeRelaxing(OutputMesh& out, std::vector<LinePath>& paths, const std::vector<std::array<int, 2>>& feature_edges,
+                const SurfaceLocator& locator, const SizeField& size)
+      : out_(out), paths_(paths), locator_(locator), size_(size), stars_(out),
+        feature_(OutputMesh::edge_key_set(feature_edges)) {
+    for (int a = 0; a < int(paths_.size()); ++a)
+      for (int i = 0; i < int(paths_[a].points.size()); ++i) places_[paths_[a].points[i]].push_back({a, i});
+  }
+
+  /// One sweep over the faces, in order.
+  void run() {
+    for (size_t k = 0; k < out_.faces.size(); ++k)
+      for (int z = 0; z < 3; ++z) {
+        const auto& t = out_.faces[k];
+        if (t[0] < 0) break;  // merged away this sweep
+        if (try_relax(int(k), t[z], t[(z + 1) % 3], t[(z + 2) % 3])) break;
+      }
+  }
+
+  std::vector<int> finish(std::vector<std::array<int, 2>>& feature_edges) {
+    auto final_point = [&](int x) {
+      for (auto it = merged_into_.find(x); it != merged_into_.end(); it = merged_into_.find(x)) x = it->second;
+      return x;
+    };
+    if (merged_into_.empty()) return {};
+    // The second line's first segment becomes the first line's: listed once.
+    std::vector<std::array<int, 2>> edges;
+    std::unordered_set<std::uint64_t> seen;
+    for (const auto& e : feature_edges) {
+      const int a = final_point(e[0]), b = final_point(e[1]);
+      if (a != b && seen.insert(OutputMesh::edge_key(a, b)).second) edges.push_back({a, b});
+    }
+    feature_edges = std::move(edges);
+    drop_dead_faces(out_);
+    return merged_;
+  }
+
+private:
+  OutputMesh& out_;
+  std::vector<LinePath>& paths_;
+  const SurfaceLocator& locator_;
+  const SizeField& size_;
+  PointStars stars_;
+  std::unordered_set<std::uint64_t> feature_;
+  std::map<int, std::vector<Place>> places_;  // point -> where paths hold it
+  std::map<int, int> merged_into_;
+  std::vector<int> merged_;
+
+  bool is_feature(int a, int b) const { return feature_.count(OutputMesh::edge_key(a, b)) > 0; }
+
+  // The place of p next to tip c on some path other than `not_path` (-1: any), p slidable there.
+  bool beside(int c, int p, int not_path, Place& where) const {
+    const auto it = places_.find(p);
+    if (it == places_.end() || it->second.size() != 1) return false;  // (shared points stay)
+    const auto [a, i] = it->second.front();
+    if (a == not_path || !paths_[size_t(a)].slidable[size_t(i)]) return false;
+    const auto& pts = paths_[size_t(a)].points;
+    const bool next_to_tip = (i > 0 && pts[size_t(i) - 1] == c) || (i + 1 < int(pts.size()) && pts[size_t(i) + 1] == c);
+    if (!next_to_tip) return false;
+    where = {a, i};
+    return true;
+  }
+
+  // Smallest angle of v's faces but `skip` once v and `other` are one point at `at`; `folds`
+  // when one of them turns too far.
+  double star_min_angle(int v, const std::vector<int>& skip, const Point3& at, int other, bool& folds) const {
+    double worst = 1e9;
+    for (int k : stars_.of(v)) {
+      if (std::find(skip.begin(), skip.end(), k) != skip.end()) continue;
+      const auto& t = out_.faces[size_t(k)];
+      std::array<Point3, 3> q;
+      for (int z = 0; z < 3; ++z) q[size_t(z)] = t[size_t(z)] == v || t[size_t(z)] == other ? at : out_.points[size_t(t[size_t(z)])];
+      const Point3 n_old = unit_normal(out_.points[t[0]], out_.points[t[1]], out_.points[t[2]]);
+      if (unit_normal(q[0], q[1], q[2]) * n_old < kFoldCos) folds = true;
+      worst = std::min(worst, min_angle(q[0], q[1], q[2]));
+    }
+    return worst;
+  }
+
+  // Face k's corner c between its sides to p1 and p2.
+  bool try_relax(int k, int c, int p1, int p2) {
+    if (!is_feature(c, p1) || !is_feature(c, p2) || is_feature(p1, p2)) return false;
+    if (!(corner_angle(out_.points[c], out_.points[p1], out_.points[p2]) < kWedgeBoundRad)) return false;
+    Place a, b;
+    if (!beside(c, p1, -1, a) || !beside(c, p2, a.first, b)) return false;
+    const double width = (out_.points[p1] - out_.points[p2]).Norm();
+    if (!(width <= kRelaxWidth * size_at_point(out_, locator_, size_, c))) return false;
+    const std::vector<int> dying = stars_.faces_on(out_, p2, p1);
+    if (dying.size() != 2 || !stars_.link_condition(out_, p2, p1, dying)) return false;
+    double before = 1e9;
+    for (int v : {p1, p2})
+      for (int f : stars_.of(v)) before = std::min(before, min_angle(out_.points, out_.faces[size_t(f)]));
+    // Candidates: the surface halfway between them (on the wedge's patch), or either point.
+    std::vector<std::pair<Point3, int>> places;
+    const Point3 half = (out_.points[p1] + out_.points[p2]) * 0.5;
+    const Projection pr = locator_.locate(half, out_.face_patch[size_t(k)], Point3(0, 0, 0), out_.host[p1], width);
+    if (pr.face >= 0) places.push_back({pr.point, pr.face});
+    places.push_back({out_.points[p1], out_.host[p1]});
+    places.push_back({out_.points[p2], out_.host[p2]});
+    // The first that raises the smallest angle: halfway moves each line least.
+    int chosen = -1;
+    for (int n = 0; n < int(places.size()) && chosen < 0; ++n) {
+      bool folds = false;
+      const double after = std::min(star_min_angle(p1, dying, places[size_t(n)].first, p2, folds),
+                                    star_min_angle(p2, dying, places[size_t(n)].first, p1, folds));
+      if (!folds && after > before + 1e-9) chosen = n;
+    }
+    if (chosen < 0) return false;
+    out_.points[p1] = places[size_t(chosen)].first;
+    out_.host[p1] = places[size_t(chosen)].second;
+    stars_.collapse(out_, p2, p1, dying);
+    // Line b now runs through p1: its segment to the tip is line a's, its next one starts at p1.
+    auto& pb = paths_[size_t(b.first)];
+    for (int j : {b.second - 1, b.second + 1})
+      if (j >= 0 && j < int(pb.points.size()) && pb.points[size_t(j)] != c) {
+        feature_.erase(OutputMesh::edge_key(p2, pb.points[size_t(j)]));
+        feature_.insert(OutputMesh::edge_key(p1, pb.points[size_t(j)]));
+      }
+    feature_.erase(OutputMesh::edge_key(c, p2));
+    pb.points[size_t(b.second)] = p1;
+    pb.slidable[size_t(b.second)] = 0;
+    paths_[size_t(a.first)].slidable[size_t(a.second)] = 0;
+    places_.erase(p2);
+    places_[p1].push_back(b);
+    merged_into_[p2] = p1;
+    merged_.push_back(p1);
+    return true;
+  }
+};
+
+}  // namespace
+
+std::vector<int> relax_wedge_tips(OutputMesh& out, std::vector<LinePath>& paths,
+                                  std::vector<std::array<int, 2>>& feature_edges, const SurfaceLocator& locator,
+                                  const SizeField& size) {
+  WedgeRelaxing relaxing(out, paths, feature_edges, locator, size);
+  relaxing.run();
+  return relaxing.finish(feature_edges);
+}
+
+}  // namespace mr::remesh

@@ -1,0 +1,36 @@
+// Wedge relaxing (opt-in): where two feature lines leave a point at an angle under 30 degrees,
+// the face filling the wedge keeps that angle whatever the mesh does, as long as it keeps both
+// lines (wedge_tips.h). Letting the two lines share their first segment takes the wedge away:
+// their first points become one, halfway between them on the surface, and the next face between
+// the lines sees them at about twice the angle (2 atan(2 tan(a/2)): 26 -> 50, 19.7 -> 38 degrees).
+// The lines then leave their input polylines near the tip by at most half the wedge's width
+// there, which is below the elements' size: what the elements could not show anyway.
+#pragma once
+
+#include "remesh/line_sliding.h"
+#include "remesh/output_mesh.h"
+#include "remesh/size_field.h"
+#include "remesh/surface_locator.h"
+
+#include <array>
+#include <vector>
+
+namespace mr::remesh {
+
+/// The first points of two lines may merge where they are at most this far apart, x the size
+/// at the tip (a wedge under 30 degrees is at most 0.52 x the size wide one element from its tip).
+constexpr double kRelaxWidth = 0.6;
+
+/// Merges the two points beside each wedge tip of `paths` (both slidable, joined by a face edge
+/// that is no feature edge, at most kRelaxWidth x the size apart) into one point shared by both
+/// lines, at the surface point halfway between them, else at one of them, where that raises the
+/// smallest angle of their faces, the link condition holds and no face turns by more than
+/// acos(0.7). The merged point is no longer slidable; a wedge
+/// still under 30 degrees beyond it is relaxed again in a later sweep. `paths` and
+/// `feature_edges` follow; the removed points stay in `out.points`, used by no face. Returns the
+/// merged points.
+std::vector<int> relax_wedge_tips(OutputMesh& out, std::vector<LinePath>& paths,
+                                  std::vector<std::array<int, 2>>& feature_edges, const SurfaceLocator& locator,
+                                  const SizeField& size);
+
+}  // namespace mr::remesh
