@@ -327,6 +327,24 @@ def test_sliver_cylinder_keeps_two_circular_ridges_and_30_degrees():
     assert point_segment_distance(rim, a, b).max() <= 1e-9
 
 
+def test_relax_wedges_takes_fandisk_to_30_degrees_where_two_ridges_leave_a_corner_at_19():
+    # fandisk at 1%: one face fills a 19.38-degree wedge between two of its ridges, every other
+    # face has 30.07. Relaxed, the ridges share their first segment there: no wedge tip is left,
+    # every face has 30.07 degrees, and the distance to the input goes from 0.00102 to 0.00117 of
+    # the diagonal (the ridges' detour at the tip).
+    kept = load("cad/fandisk.obj")
+    plain = kept.meshing_advancing_front_remesh(target_length=pymeshlab.PercentageValue(1.0))
+    assert plain["wedge_tips"] == 1 and plain["min_wedge_angle"] == pytest.approx(19.38, abs=0.01)
+    ms = load("cad/fandisk.obj")
+    res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PercentageValue(1.0), relax_wedges=True)
+    assert res["relaxed_wedges"] == 1 and res["wedge_tips"] == 0 and res["unmeshed_sides"] == 0
+    assert res["min_angle"] >= 30.0 and min_angles(ms.current_mesh()).min() >= 30.0
+    assert res["missing_feature_edges"] == 0
+    assert res["hausdorff_rel"] <= 1.5e-3 and res["hausdorff_rel"] <= plain["hausdorff_rel"] * 1.25
+    topo = ms.get_topological_measures()
+    assert topo["is_mesh_two_manifold"] and topo["boundary_edges"] == kept.get_topological_measures()["boundary_edges"]
+
+
 def narrow_prism(apex_deg, length=10.0, height=3.0):
     """A prism over an isosceles triangle with the given apex angle: its top and bottom faces
     have a corner where two ridges leave at that angle."""
