@@ -2,7 +2,8 @@
 """Ours (meshing_advancing_front_remesh) vs MeshLab's meshing_isotropic_explicit_remeshing,
 in the same run, at the same target length (default 1% of the diagonal) and feature angle,
 on the organic and CAD meshes of ../shared/data. Optional peers when importable: Netgen's
-STL surface mesher (netgen-mesher) and MMG's surface remesher (mmgpy).
+STL surface mesher (netgen-mesher) and MMG's surface remesher (mmgpy). The row
+ours_relax_wedges is our filter with the opt-in relax_wedges.
 
 Writes <out>/remesh_compare.json, <out>/remesh_compare.md, <out>/remesh_min_angle_hist.png
 and, with --benchmark-md, benchmarks/remesh.md.
@@ -272,6 +273,16 @@ def main(argv=None):
                                                 min_line_length=pymeshlab.PureValue(args.min_line * target))
         ours = measure(ms, ms.current_mesh_id(), ref_id, diag, target, args.ridge_angle, in_ridges, time.perf_counter() - t)
         ours["unmeshed_sides"] = res["unmeshed_sides"]
+        # The same with the opt-in wedge relaxing: lines leaving a point at under 30 degrees may
+        # share their first segment (docs/remesh.md, "Wedges of feature lines").
+        ms.set_current_mesh(src_id)
+        t = time.perf_counter()
+        res = ms.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(target), ridge_angle=args.ridge_angle,
+                                                min_line_length=pymeshlab.PureValue(args.min_line * target),
+                                                relax_wedges=True)
+        relaxed = measure(ms, ms.current_mesh_id(), ref_id, diag, target, args.ridge_angle, in_ridges,
+                          time.perf_counter() - t)
+        relaxed["unmeshed_sides"] = res["unmeshed_sides"]
         ms.set_current_mesh(src_id)
         ms.generate_copy_of_current_mesh()
         t = time.perf_counter()
@@ -279,7 +290,7 @@ def main(argv=None):
         iso = measure(ms, ms.current_mesh_id(), ref_id, diag, target, args.ridge_angle, in_ridges, time.perf_counter() - t)
         ms.set_current_mesh(src_id)
         src_topo = ms.get_topological_measures()
-        results = {"ours": ours, "meshlab_isotropic": iso}
+        results = {"ours": ours, "ours_relax_wedges": relaxed, "meshlab_isotropic": iso}
         results.update(run_peers(ms, target, args.ridge_angle, diag, in_ridges, src_id, ref_id,
                                  [p for p in args.peers.split(",") if p]))
         for method, r in results.items():
