@@ -71,17 +71,22 @@ private:
 
   bool is_feature(int a, int b) const { return feature_.count(OutputMesh::edge_key(a, b)) > 0; }
 
-  // The place of p next to tip c on some path other than `not_path` (-1: any), p slidable there.
+  // The place of p next to tip c on some path other than `not_path` (-1: any): p slidable there,
+  // or a corner (the end of that path and of others).
   bool beside(int c, int p, int not_path, Place& where) const {
     const auto it = places_.find(p);
-    if (it == places_.end() || it->second.size() != 1) return false;  // (shared points stay)
-    const auto [a, i] = it->second.front();
-    if (a == not_path || !paths_[size_t(a)].slidable[size_t(i)]) return false;
-    const auto& pts = paths_[size_t(a)].points;
-    const bool next_to_tip = (i > 0 && pts[size_t(i) - 1] == c) || (i + 1 < int(pts.size()) && pts[size_t(i) + 1] == c);
-    if (!next_to_tip) return false;
-    where = {a, i};
-    return true;
+    if (it == places_.end()) return false;
+    const bool corner = out_.kind[size_t(p)] == PointKind::Corner;
+    if (!corner && it->second.size() != 1) return false;  // (shared points stay)
+    for (const auto& [a, i] : it->second) {
+      if (a == not_path || !(corner || paths_[size_t(a)].slidable[size_t(i)])) continue;
+      const auto& pts = paths_[size_t(a)].points;
+      if ((i > 0 && pts[size_t(i) - 1] == c) || (i + 1 < int(pts.size()) && pts[size_t(i) + 1] == c)) {
+        where = {a, i};
+        return true;
+      }
+    }
+    return false;
   }
 
   // Smallest angle of v's faces but `skip` once v and `other` are one point at `at`; `folds`
@@ -132,19 +137,21 @@ private:
     out_.points[p1] = places[size_t(chosen)].first;
     out_.host[p1] = places[size_t(chosen)].second;
     stars_.collapse(out_, p2, p1, dying);
-    // Line b now runs through p1: its segment to the tip is line a's, its next one starts at p1.
-    auto& pb = paths_[size_t(b.first)];
-    for (int j : {b.second - 1, b.second + 1})
-      if (j >= 0 && j < int(pb.points.size()) && pb.points[size_t(j)] != c) {
-        feature_.erase(OutputMesh::edge_key(p2, pb.points[size_t(j)]));
-        feature_.insert(OutputMesh::edge_key(p1, pb.points[size_t(j)]));
-      }
-    feature_.erase(OutputMesh::edge_key(c, p2));
-    pb.points[size_t(b.second)] = p1;
-    pb.slidable[size_t(b.second)] = 0;
+    // Every line through p2 now runs through p1 (line b's segment to the tip is line a's).
+    for (const Place& q : places_[p2]) {
+      auto& path = paths_[size_t(q.first)];
+      for (int j : {q.second - 1, q.second + 1})
+        if (j >= 0 && j < int(path.points.size())) {
+          feature_.erase(OutputMesh::edge_key(p2, path.points[size_t(j)]));
+          feature_.insert(OutputMesh::edge_key(p1, path.points[size_t(j)]));
+        }
+      path.points[size_t(q.second)] = p1;
+      path.slidable[size_t(q.second)] = 0;
+      places_[p1].push_back(q);
+    }
     paths_[size_t(a.first)].slidable[size_t(a.second)] = 0;
+    if (out_.kind[size_t(p2)] == PointKind::Corner) out_.kind[size_t(p1)] = PointKind::Corner;
     places_.erase(p2);
-    places_[p1].push_back(b);
     merged_into_[p2] = p1;
     merged_.push_back(p1);
     return true;

@@ -3,7 +3,8 @@
 // and P2 halfway between them makes the lines share their first segment: that face goes and the
 // next one between the lines sees them at about twice the angle. The merge must not happen where
 // the first points are too far apart for the size, where one is shared with a third line, or
-// where the wedge is 30 degrees or more.
+// where the wedge is 30 degrees or more. First points that are corners (the lines from the tip
+// are one segment long, others go on from there) merge too, and take every line along.
 #include "remesh/wedge_relaxing.h"
 #include "remesh/triangle_geometry.h"
 #include "output_lattice.h"
@@ -47,11 +48,18 @@ struct Wedge {
   LinePath path(const std::vector<int>& points) const {
     LinePath p;
     for (int x : points) p.polyline.push_back(out.points[x]);
-    p.segment_host = {0, 0};
+    p.segment_host.assign(points.size() - 1, 0);
     p.points = points;
-    p.arc = {0.0, kL, 2 * kL};
-    p.slidable = {0, 1, 0};
+    for (size_t i = 0; i < points.size(); ++i) p.arc.push_back(double(i) * kL);
+    p.slidable.assign(points.size(), 0);
+    for (size_t i = 1; i + 1 < points.size(); ++i) p.slidable[i] = 1;
     return p;
+  }
+
+  /// P1 and P2 corners: the lines from the tip end there, two more lines go on.
+  void make_first_points_corners() {
+    out.kind[size_t(p1)] = out.kind[size_t(p2)] = PointKind::Corner;
+    paths = {path({c, p1}), path({p1, a2}), path({c, p2}), path({p2, b2})};
   }
 };
 
@@ -112,4 +120,27 @@ TEST(RemeshWedgeRelaxing, WedgesStayWhereTheyAreWideOrThePointsFarApartOrShared)
   shared.paths[1].slidable[1] = 0;
   EXPECT_TRUE(relax_wedge_tips(shared.out, shared.paths, shared.features, sq.locator, sq.size).empty());
   EXPECT_EQ(shared.out.faces.size(), 7u);
+}
+
+TEST(RemeshWedgeRelaxing, CornersBesideANarrowWedgeMergeAndEveryLineThroughThemFollows) {
+  test::UnitSquare sq(0.5);
+  Wedge w(20.0);
+  w.make_first_points_corners();
+  const double before = test::worst_angle(w.out);
+  ASSERT_EQ(relax_wedge_tips(w.out, w.paths, w.features, sq.locator, sq.size), std::vector<int>{w.p1});
+  EXPECT_EQ(w.out.faces.size(), 5u);
+  EXPECT_TRUE(all_face_up(w.out));
+  EXPECT_GT(test::worst_angle(w.out), before + 5 * kDeg);
+  EXPECT_EQ(w.out.kind[size_t(w.p1)], PointKind::Corner);
+  ASSERT_EQ(w.paths.size(), 4u);
+  EXPECT_EQ(w.paths[0].points, (std::vector<int>{w.c, w.p1}));
+  EXPECT_EQ(w.paths[1].points, (std::vector<int>{w.p1, w.a2}));
+  EXPECT_EQ(w.paths[2].points, (std::vector<int>{w.c, w.p1}));  // the tip's two lines are one now
+  EXPECT_EQ(w.paths[3].points, (std::vector<int>{w.p1, w.b2}));
+  std::vector<std::pair<int, int>> edges;
+  for (const auto& f : w.features) edges.push_back(std::minmax(f[0], f[1]));
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::pair<int, int>> expected{std::minmax(w.c, w.p1), std::minmax(w.p1, w.a2), std::minmax(w.p1, w.b2)};
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(edges, expected);
 }
