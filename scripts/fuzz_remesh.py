@@ -7,7 +7,8 @@ Seeds run from FIRST_SEED up to LAST_SEED, which is left out (as in range()).
 Seed s damages one shared mesh (s % 4: fandisk, part, bunny, blade) in one way (s % 7):
 drop 20% of the faces, noise of 1% of the diagonal on every vertex, reversed copies of 10% of
 the faces, every 30th vertex moved onto the next (zero-area faces), keep 5% of the faces,
-flatten one axis, a shifted copy added; target length and ridge angle are drawn from the seed.
+flatten one axis, a shifted copy added; target length, ridge angle and relax_wedges are drawn
+from the seed.
 Each case runs in its own process, so a crash or a hang is seen as such. Prints one line per
 seed and the failing seeds at the end; not part of the test suite.
 """
@@ -54,14 +55,16 @@ else:
     v = np.concatenate([v, v + 0.1 * diag * rng.random(3)])
 percent = float(rng.choice([0.5, 1, 2, 5]))
 ridge = float(rng.choice([20, 30, 60]))
+relax = bool(rng.integers(0, 2))
 out = pymeshlab.MeshSet()
 out.add_mesh(pymeshlab.Mesh(v, f))
 try:
-    r = out.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(percent / 100 * diag), ridge_angle=ridge)
-    print(f"{percent}% ridge {ridge}: {out.current_mesh().face_number()} faces, "
+    r = out.meshing_advancing_front_remesh(target_length=pymeshlab.PureValue(percent / 100 * diag), ridge_angle=ridge,
+                                           relax_wedges=relax)
+    print(f"{percent}% ridge {ridge} relax {relax}: {out.current_mesh().face_number()} faces, "
           f"open sides {r['unmeshed_sides']}, unmeshed patches {r['unmeshed_patches']}")
 except pymeshlab.PyMeshLabException as e:
-    print(f"{percent}% ridge {ridge}: refused: {str(e).splitlines()[-1][:160]}")
+    print(f"{percent}% ridge {ridge} relax {relax}: refused: {str(e).splitlines()[-1][:160]}")
 '''
 
 
