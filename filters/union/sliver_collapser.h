@@ -178,7 +178,9 @@ private:
     return norm(n_new) > 0 && dot(n_old, n_new) > 0.1 * norm(n_old) * norm(n_new);
   }
   /// Moves v onto w if allowed; with `apply` false only checks, and `dv` gets the volume change.
-  bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr);
+  /// `beat` (dry runs): a score the collapse must beat to matter; one that cannot is refused
+  /// without being weighed.
+  bool try_collapse(int v, int w, bool apply = true, double* dv_out = nullptr, double beat = HUGE_VAL);
   /// Flips side z of face f.
   bool try_flip(int f, int z) {
     return unless_refused_now(flip_refused_now_[size_t(3 * f + z)], [&] { return attempt_flip(f, z); });

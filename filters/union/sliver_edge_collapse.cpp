@@ -4,7 +4,7 @@
 
 namespace mr::surface_union::slivers {
 
-bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
+bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out, double beat) {
   if (collapse_still_refused(v, w)) return false;
   if (!star_in_slab(v) || !star_in_slab(w)) return false;
   // Every refusal up to the crossing check is remembered (see collapse_still_refused).
@@ -77,6 +77,10 @@ bool Collapser::try_collapse(int v, int w, bool apply, double* dv_out) {
         }
     }
   const double gg = dot(g, g);
+  // The score is |s_old| / 6 whichever target is kept: w's own place changes the volume by
+  // -s_old and sweeps none; the volume-keeping target changes none and sweeps |p| sqrt(gg) =
+  // |s_old| (up to rounding, hence the margin). A dry run that cannot beat `beat` is not weighed.
+  if (!apply && std::fabs(s_old) / 6 * (1 - 1e-12) >= beat) return false;
   // Checks one target p (relative to w): no flipped or degenerate face, bounded
   // deviation, a better worst angle; gives six times the volume change.
   auto acceptable = [&](const V3& p, double& dv) {

@@ -97,7 +97,7 @@ void Collapser::run_passes(double threshold, const std::vector<char>* seed) {
           const int z = edges[e].second;
           const int a = t[(z + dir) % 3], b = t[(z + 1 - dir) % 3];
           double dv = 0;
-          if (try_collapse(a, b, false, &dv) && dv < best_dv) { best_dv = dv; best_v = a; best_w = b; }
+          if (try_collapse(a, b, false, &dv, best_dv) && dv < best_dv) { best_dv = dv; best_v = a; best_w = b; }
         }
       if (best_v >= 0 && try_collapse(best_v, best_w)) { ++done; ++collapses_; ok = true; }
       // Or an end of the short edge (then the third corner) leaves, its star filled again.
