@@ -25,9 +25,9 @@ public:
   WedgeRelaxing(OutputMesh& out, std::vector<LinePath>& paths, const std::vector<std::array<int, 2>>& feature_edges,
                 const SurfaceLocator& locator, const SizeField& size)
       : out_(out), paths_(paths), locator_(locator), size_(size), stars_(out),
-        feature_(OutputMesh::edge_key_set(feature_edges)) {
+        feature_(OutputMesh::edge_key_set(feature_edges)), places_(out.points.size()) {
     for (int a = 0; a < int(paths_.size()); ++a)
-      for (int i = 0; i < int(paths_[a].points.size()); ++i) places_[paths_[a].points[i]].push_back({a, i});
+      for (int i = 0; i < int(paths_[a].points.size()); ++i) places_[size_t(paths_[a].points[i])].push_back({a, i});
   }
 
   /// One sweep over the faces, in order.
@@ -65,7 +65,7 @@ private:
   const SizeField& size_;
   PointStars stars_;
   std::unordered_set<std::uint64_t> feature_;
-  std::map<int, std::vector<Place>> places_;  // point -> where paths hold it
+  std::vector<std::vector<Place>> places_;  // per point: where paths hold it
   std::map<int, int> merged_into_;
   std::vector<int> merged_;
 
@@ -74,11 +74,10 @@ private:
   // The place of p next to tip c on some path other than `not_path` (-1: any): p slidable there,
   // or a corner (the end of that path and of others).
   bool beside(int c, int p, int not_path, Place& where) const {
-    const auto it = places_.find(p);
-    if (it == places_.end()) return false;
+    const std::vector<Place>& held = places_[size_t(p)];
     const bool corner = out_.kind[size_t(p)] == PointKind::Corner;
-    if (!corner && it->second.size() != 1) return false;  // (shared points stay)
-    for (const auto& [a, i] : it->second) {
+    if (!corner && held.size() != 1) return false;  // (shared points stay)
+    for (const auto& [a, i] : held) {
       if (a == not_path || !(corner || paths_[size_t(a)].slidable[size_t(i)])) continue;
       const auto& pts = paths_[size_t(a)].points;
       if ((i > 0 && pts[size_t(i) - 1] == c) || (i + 1 < int(pts.size()) && pts[size_t(i) + 1] == c)) {
@@ -86,6 +85,14 @@ private:
         return true;
       }
     }
+    return false;
+  }
+
+  // Some path holds both p and q: merged, it would run from the point back to itself.
+  bool on_one_path(int p, int q) const {
+    for (const Place& x : places_[size_t(p)])
+      for (const Place& y : places_[size_t(q)])
+        if (x.first == y.first) return true;
     return false;
   }
 
@@ -110,7 +117,7 @@ private:
     if (!is_feature(c, p1) || !is_feature(c, p2) || is_feature(p1, p2)) return false;
     if (!(corner_angle(out_.points[c], out_.points[p1], out_.points[p2]) < kWedgeBoundRad)) return false;
     Place a, b;
-    if (!beside(c, p1, -1, a) || !beside(c, p2, a.first, b)) return false;
+    if (!beside(c, p1, -1, a) || !beside(c, p2, a.first, b) || on_one_path(p1, p2)) return false;
     const double width = (out_.points[p1] - out_.points[p2]).Norm();
     if (!(width <= kRelaxWidth * size_at_point(out_, locator_, size_, c))) return false;
     const std::vector<int> dying = stars_.faces_on(out_, p2, p1);
@@ -138,7 +145,7 @@ private:
     out_.host[p1] = places[size_t(chosen)].second;
     stars_.collapse(out_, p2, p1, dying);
     // Every line through p2 now runs through p1 (line b's segment to the tip is line a's).
-    for (const Place& q : places_[p2]) {
+    for (const Place& q : places_[size_t(p2)]) {
       auto& path = paths_[size_t(q.first)];
       for (int j : {q.second - 1, q.second + 1})
         if (j >= 0 && j < int(path.points.size())) {
@@ -147,11 +154,11 @@ private:
         }
       path.points[size_t(q.second)] = p1;
       path.slidable[size_t(q.second)] = 0;
-      places_[p1].push_back(q);
+      places_[size_t(p1)].push_back(q);
     }
     paths_[size_t(a.first)].slidable[size_t(a.second)] = 0;
     if (out_.kind[size_t(p2)] == PointKind::Corner) out_.kind[size_t(p1)] = PointKind::Corner;
-    places_.erase(p2);
+    places_[size_t(p2)].clear();
     merged_into_[p2] = p1;
     merged_.push_back(p1);
     return true;

@@ -3,8 +3,8 @@
 // lines (wedge_tips.h). Letting the two lines share their first segment takes the wedge away:
 // their first points become one, halfway between them on the surface, and the next face between
 // the lines sees them at about twice the angle (2 atan(2 tan(a/2)): 26 -> 50, 19.7 -> 38 degrees).
-// The lines then leave their input polylines near the tip by at most half the wedge's width
-// there, which is below the elements' size: what the elements could not show anyway.
+// Each merge moves a line by at most the two points' distance (under 0.6 x the size), half of it
+// where they meet halfway, the usual case: below what the elements could show anyway.
 #pragma once
 
 #include "remesh/line_sliding.h"

@@ -79,9 +79,10 @@ RichParameterList Remeshing::initParameterList(const QAction*, const MeshDocumen
   list.addParam(RichBool("relax_wedges", d.relax_wedges, "Relax narrow wedges",
                          "Where two feature lines leave a point at under 30 degrees, the face between them keeps "
                          "that angle as long as both lines are kept. With this on, the two lines share their first "
-                         "segment there (their first points merge, halfway between them on the surface, when they "
-                         "are at most 0.6 x the size apart and the merge raises the smallest angle): the lines leave "
-                         "the input by at most half the wedge's width near its tip."));
+                         "segment there (their first points merge, halfway between them on the surface or else at one "
+                         "of them, when they are at most 0.6 x the size apart and the merge raises the smallest "
+                         "angle): near the tip each line moves by at most the points' distance, half of it where "
+                         "they meet halfway."));
   list.addParam(RichBool("use_size_source", false, "Use a size source layer",
                          "Limit the size near the vertices of another layer, each vertex carrying the wanted size "
                          "in its vertex quality."));

@@ -57,8 +57,9 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
 
     ``relax_wedges``: where an intersection line and another line leave a point at under 30
     degrees (a line running into a crease at a shallow angle, a cluster's triple points), they
-    may share their first segment (the remesh filter's parameter): the wedge's face goes, and the
-    lines leave the union there by at most half the wedge's width one element from its tip.
+    may share their first segment (the remesh filter's parameter): the wedge's face goes, and near
+    the tip each line moves by at most the distance of its first point from the other line's
+    (under 0.6 x the size; half of it where they meet halfway, the usual case).
     """
     if bodies not in BODIES:
         raise ValueError(f"bodies must be one of {sorted(BODIES)}, got {bodies!r}")
