@@ -330,7 +330,8 @@ std::unique_ptr<Fronts> mesh_fronts(const TriMesh& given, const Params& params, 
   sp.cap_gradation = std::max(kCapGradation, params.gradation);
   // Necks between lines that pass closer than a tenth of the target (neck_caps.h).
   std::vector<double> neck_cap(surface.points.size(), 0.0);
-  cap_necks(surface, fr.lines, params.target_length, neck_cap);
+  cap_necks(surface, fr.lines, given_lines(input, fr.lines, params.use_selected_edges_as_ridges), params.target_length,
+            neck_cap);
   const SizeField& size = run->size.emplace(size_field_with_steps_and_necks(
       surface, fr.ridge, sp, params.target_length, &result.thin_step_faces, &neck_cap, &result.neck_points,
       &result.narrow_rim_faces));

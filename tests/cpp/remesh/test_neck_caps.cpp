@@ -1,7 +1,10 @@
-// Neck caps: line points closer than 0.15 x target to another line get caps of 1.7 x that
-// distance (never below 0.05 x target); lines farther apart get none, and neither do two lines
-// that end at one corner (a wedge) nor one or two points where two lines touch in passing.
+// Neck caps: line points closer than 0.15 x target to another line (0.45 x target between two
+// lines the caller gave) get caps of 1.7 x that distance (never below 0.05 x target); lines
+// farther apart get none, and neither do two lines that end at one corner (a wedge) nor one or
+// two points where two lines touch in passing.
 #include "remesh/neck_caps.h"
+
+#include "shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -37,6 +40,9 @@ void two_lines(double gap, int n, bool shared_start, std::vector<Point3>& points
   }
 }
 
+// No line given by the caller: every line was found by its dihedral angle.
+std::vector<char> none(const std::vector<features::DiscreteLine>& lines) { return std::vector<char>(lines.size(), 0); }
+
 }  // namespace
 
 TEST(RemeshNeckCaps, LinesCloserThanTheNeckReachAreCappedAtTheirDistance) {
@@ -46,7 +52,7 @@ TEST(RemeshNeckCaps, LinesCloserThanTheNeckReachAreCappedAtTheirDistance) {
   two_lines(0.004, 10, false, points, lines);
   const remesh::Surface s = points_only(points);
   std::vector<double> cap(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(s, lines, target, cap), 22);
+  EXPECT_EQ(remesh::cap_necks(s, lines, none(lines), target, cap), 22);
   for (double c : cap) EXPECT_NEAR(c, 1.7 * 0.004, 1e-12);
 }
 
@@ -56,12 +62,12 @@ TEST(RemeshNeckCaps, LinesFartherApartGetNoCapAndVeryCloseOnesTheFloor) {
   const double target = 0.1;
   two_lines(0.02, 10, false, points, lines);  // 0.2 x target
   std::vector<double> cap(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, target, cap), 0);
+  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, none(lines), target, cap), 0);
   for (double c : cap) EXPECT_EQ(c, 0.0);
 
   two_lines(0.001, 10, false, points, lines);  // 1.7 x 0.001 is under the floor of 0.05 x target
   cap.assign(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, target, cap), 22);
+  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, none(lines), target, cap), 22);
   for (double c : cap) EXPECT_NEAR(c, 0.05 * target, 1e-12);
 }
 
@@ -71,7 +77,7 @@ TEST(RemeshNeckCaps, ExistingSmallerCapsStay) {
   two_lines(0.004, 10, false, points, lines);
   std::vector<double> cap(points.size(), 0.0);
   cap[3] = 0.001;
-  remesh::cap_necks(points_only(points), lines, 0.1, cap);
+  remesh::cap_necks(points_only(points), lines, none(lines), 0.1, cap);
   EXPECT_EQ(cap[3], 0.001);
   EXPECT_NEAR(cap[4], 1.7 * 0.004, 1e-12);
 }
@@ -82,7 +88,7 @@ TEST(RemeshNeckCaps, LinesEndingAtOneCornerAreAWedgeAndGetNoCap) {
   std::vector<features::DiscreteLine> lines;
   two_lines(0.004, 10, true, points, lines);
   std::vector<double> cap(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, 0.5, cap), 0);
+  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, none(lines), 0.5, cap), 0);
   for (double c : cap) EXPECT_EQ(c, 0.0);
 }
 
@@ -96,12 +102,12 @@ TEST(RemeshNeckCaps, TwoPointsTouchingAnotherLineAreNoNeckThreeAre) {
   for (int close : {5, 6}) {
     points[size_t(lines[1].vertices[size_t(close)])][1] = 0.004;
     cap.assign(points.size(), 0.0);
-    EXPECT_EQ(remesh::cap_necks(points_only(points), lines, 0.1, cap), 0) << close;
+    EXPECT_EQ(remesh::cap_necks(points_only(points), lines, none(lines), 0.1, cap), 0) << close;
   }
   // Three in a row make a neck: those, and the first line's points across from them.
   points[size_t(lines[1].vertices[7])][1] = 0.004;
   cap.assign(points.size(), 0.0);
-  EXPECT_GT(remesh::cap_necks(points_only(points), lines, 0.1, cap), 3);
+  EXPECT_GT(remesh::cap_necks(points_only(points), lines, none(lines), 0.1, cap), 3);
   for (int k : {5, 6, 7}) EXPECT_NEAR(cap[size_t(lines[1].vertices[size_t(k)])], 1.7 * 0.004, 1e-12) << k;
   EXPECT_NEAR(cap[size_t(lines[0].vertices[6])], 1.7 * 0.004, 1e-12);
   EXPECT_EQ(cap[size_t(lines[1].vertices[2])], 0.0);
@@ -117,6 +123,44 @@ TEST(RemeshNeckCaps, AClosedLineCountsARunAcrossItsSeam) {
   lines[0].closed = true;
   lines[1].vertices = {6, 7};
   std::vector<double> cap(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, 0.1, cap), 3);
+  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, none(lines), 0.1, cap), 3);
   for (int v : {0, 4, 5}) EXPECT_NEAR(cap[size_t(v)], 1.7 * 0.004, 1e-12) << v;
+}
+
+TEST(RemeshNeckCaps, TwoGivenLinesAreCappedFromAWiderReach) {
+  // 0.3 x target apart: beyond the reach between found lines, within the one between given lines.
+  std::vector<Point3> points;
+  std::vector<features::DiscreteLine> lines;
+  const double target = 0.1;
+  two_lines(0.03, 10, false, points, lines);
+  std::vector<double> cap(points.size(), 0.0);
+  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 0}, target, cap), 0);  // one given line is not enough
+  for (double c : cap) EXPECT_EQ(c, 0.0);
+  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 1}, target, cap), 22);
+  for (double c : cap) EXPECT_NEAR(c, 1.7 * 0.03, 1e-12);
+  // 0.5 x target apart: beyond both reaches.
+  two_lines(0.05, 10, false, points, lines);
+  cap.assign(points.size(), 0.0);
+  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 1}, target, cap), 0);
+}
+
+TEST(RemeshNeckCaps, ALineIsGivenWhenEveryEdgeOfItIsASelectedFaceEdge) {
+  TriMesh m;
+  test::grid(m, 2);  // 3 x 3 vertices, row by row
+  std::vector<features::DiscreteLine> lines(3);
+  lines[0].vertices = {0, 1, 2};  // bottom row: both edges selected below
+  lines[1].vertices = {3, 4, 5};  // middle row: one edge selected
+  lines[2].vertices = {6, 7, 8};  // top row: none
+  auto select = [&](int a, int b) {
+    for (auto& f : m.face)
+      for (int z = 0; z < 3; ++z) {
+        const int x = int(vcg::tri::Index(m, f.V(z))), y = int(vcg::tri::Index(m, f.V((z + 1) % 3)));
+        if ((x == a && y == b) || (x == b && y == a)) f.SetFaceEdgeS(z);
+      }
+  };
+  select(0, 1);
+  select(1, 2);
+  select(3, 4);
+  EXPECT_EQ(remesh::given_lines(m, lines, true), (std::vector<char>{1, 0, 0}));
+  EXPECT_EQ(remesh::given_lines(m, lines, false), (std::vector<char>{0, 0, 0}));
 }
