@@ -2,6 +2,7 @@
 
 #include "common/segment_geometry.h"
 #include "common/uniform_grid.h"
+#include "remesh/output_mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -46,18 +47,20 @@ constexpr size_t kMinGivenRun = 5;
 std::vector<char> given_lines(const TriMesh& mesh, const std::vector<features::DiscreteLine>& lines, bool use_selected) {
   std::vector<char> given(lines.size(), 0);
   if (!use_selected) return given;
-  auto key = [](size_t a, size_t b) { return uint64_t(std::min(a, b)) << 32 | uint64_t(std::max(a, b)); };
-  std::unordered_set<uint64_t> selected;
+  std::unordered_set<std::uint64_t> selected;
   for (const auto& f : mesh.face)
     if (!f.IsD())
       for (int z = 0; z < 3; ++z)
-        if (f.IsFaceEdgeS(z)) selected.insert(key(vcg::tri::Index(mesh, f.cV(z)), vcg::tri::Index(mesh, f.cV((z + 1) % 3))));
+        if (f.IsFaceEdgeS(z))
+          selected.insert(OutputMesh::edge_key(int(vcg::tri::Index(mesh, f.cV(z))), int(vcg::tri::Index(mesh, f.cV((z + 1) % 3)))));
   if (selected.empty()) return given;
   for (size_t l = 0; l < lines.size(); ++l) {
     const auto& v = lines[l].vertices;
-    const size_t n = v.size(), segments = lines[l].closed ? n : n - 1;
-    bool all = n >= 2;
-    for (size_t k = 0; k < segments && all; ++k) all = selected.count(key(size_t(v[k]), size_t(v[(k + 1) % n]))) > 0;
+    const size_t n = v.size();
+    if (n < 2) continue;
+    const size_t segments = lines[l].closed ? n : n - 1;
+    bool all = true;
+    for (size_t k = 0; k < segments && all; ++k) all = selected.count(OutputMesh::edge_key(v[k], v[(k + 1) % n])) > 0;
     given[l] = all;
   }
   return given;
