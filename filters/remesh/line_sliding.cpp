@@ -31,6 +31,8 @@ constexpr double kMinNormalAgreement = 0.5;
 // Angles closer than this (radians) are taken as equal: a wedge tip's angle changes by rounding
 // when the point beside it slides along a straight line.
 constexpr double kAngleTie = 1e-9;
+// A slide between the bounds that falls short of the goal must gain at least this (radians).
+constexpr double kMinGain = 0.5 * 3.14159265358979323846 / 180.0;
 
 struct Placement {
   Point3 point;
@@ -161,7 +163,7 @@ bool slide_with_partner(OutputMesh& out, std::vector<LinePath>& paths, const std
 
 std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths,
                                    const std::vector<std::array<int, 2>>& feature_edges, double worse_than_rad,
-                                   double goal_rad) {
+                                   double goal_rad, bool short_of_goal) {
   const size_t nv = out.points.size();
   const FaceRings rings(nv, out.faces);
   const std::vector<int>& begin = rings.begin;
@@ -188,6 +190,10 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
       // lines no slide changes it) the smallest off the tips, as long as no tip narrows.
       double best = was.smallest(), best_off = was.off_wedges, best_arc = -1;
       Placement best_place;
+      // Between the bounds, the largest gain short of the goal: taken only where neither a
+      // slide of its own nor one in a pair reaches the goal.
+      double gain = was.smallest(), gain_arc = -1;
+      Placement gain_place;
       auto weigh = [&](double t, bool small_step = false) {
         const double s = lo + t * (hi - lo);
         const Placement place = at_arc(path, cumulative, s);
@@ -205,6 +211,10 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
           best_off = off;
           best_arc = s;
           best_place = place;
+        } else if (must_reach && short_of_goal && now.smallest() > gain + kMinGain) {
+          gain = now.smallest();
+          gain_arc = s;
+          gain_place = place;
         }
       };
       for (double t : kFractions) weigh(t);
@@ -222,6 +232,10 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
       if (best_arc < 0 && was.off_wedges >= worse_than_rad && was.off_wedges < goal_rad &&
           slide_with_partner(out, paths, slot, rings, feature_keys, cumulative, int(p), int(i), was, goal_rad, moved))
         continue;
+      if (best_arc < 0 && gain_arc >= 0) {
+        best_arc = gain_arc;
+        best_place = gain_place;
+      }
       if (best_arc < 0) continue;
       out.points[v] = best_place.point;
       out.host[v] = path.segment_host[best_place.segment];

@@ -37,6 +37,6 @@ struct LinePath {
 /// decides, or no point beside a tip would move.
 std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths,
                                    const std::vector<std::array<int, 2>>& feature_edges, double worse_than_rad,
-                                   double goal_rad);
+                                   double goal_rad, bool short_of_goal = false);
 
 }  // namespace mr::remesh

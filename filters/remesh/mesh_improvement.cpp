@@ -229,6 +229,17 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
     for (size_t v = 0; v < near_changed.size(); ++v) near_changed[v] = near_changed[v] && movable[v];
     r.moves += smooth_pass(out, locator, near_changed);
   }
+  // Then, where neither a slide of its own nor one in a pair lifts a line point's faces
+  // between the bounds to the goal, the largest gain short of it (after the sweeps above, so
+  // that such a slide does not stand in the way of one reaching the goal).
+  for (int it = 0; it < iterations; ++it) {
+    const std::vector<int> slid = slide_line_points(out, line_paths, feature_edges, kSlideBelow, kSlideGoal, true);
+    r.moves += int(slid.size());
+    if (slid.empty()) break;
+    std::vector<char> near_changed = region_around(out, slid);
+    for (size_t v = 0; v < near_changed.size(); ++v) near_changed[v] = near_changed[v] && movable[v];
+    r.moves += smooth_pass(out, locator, near_changed);
+  }
   // Last, free points whose faces stay under the goal (pinched between feature points, where
   // the ring's centre does not help) search nearby for better places; after the first sweep only
   // points near one that moved (the others' faces are as the last search left them).

@@ -431,6 +431,45 @@ TEST(RemeshPieces, LinePointTakesASmallStepWhereNoneOfTheUsualPlacesReachesTheGo
   EXPECT_NEAR(worst(), 30.95, 0.01);
 }
 
+TEST(RemeshPieces, LinePointTakesTheBestGainShortOfTheGoalOnlyWhenAskedTo) {
+  // A straight line from (0, 0) to (2, 0) with its point at 1 and a free point on each side:
+  // the faces around the point have 25.76 degrees, between the bounds (25 and 30), and no place
+  // a slide tries reaches 30 (the best gives 28.22). A plain sweep leaves the point
+  // where it is; asked for the best gain short of the goal, the point takes it.
+  const double deg = 3.14159265358979323846 / 180.0;
+  OutputMesh out;
+  const int b0 = out.add_point(Point3(0, 0, 0), 0, PointKind::Corner);
+  const int b1 = out.add_point(Point3(1, 0, 0), 0, PointKind::Line);
+  const int b2 = out.add_point(Point3(2, 0, 0), 0, PointKind::Corner);
+  const int a = out.add_point(Point3(0.92, 1.05, 0), 0, PointKind::Free);
+  const int b = out.add_point(Point3(1.64, -0.88, 0), 0, PointKind::Free);
+  out.faces = {{b0, b1, a}, {b1, b2, a}, {b1, b0, b}, {b2, b1, b}};
+  out.face_patch = {0, 0, 1, 1};
+  auto worst = [&] {
+    double w = 1e9;
+    for (const auto& f : out.faces) w = std::min(w, min_angle(out.points, f));
+    return w / deg;
+  };
+  EXPECT_NEAR(worst(), 25.76, 0.01);
+  LinePath line;
+  line.polyline = {Point3(0, 0, 0), Point3(2, 0, 0)};
+  line.segment_host = {3};
+  line.points = {b0, b1, b2};
+  line.arc = {0.0, 1.0, 2.0};
+  line.slidable = {0, 1, 0};
+  std::vector<LinePath> paths{line};
+  const std::vector<std::array<int, 2>> lines{{b0, b1}, {b1, b2}};
+  EXPECT_TRUE(slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg).empty());
+  EXPECT_EQ(out.points[b1], Point3(1, 0, 0));
+  EXPECT_EQ(slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg, true).size(), 1u);
+  EXPECT_NEAR(worst(), 28.22, 0.01);
+  EXPECT_LT(worst(), 30.0);
+  EXPECT_EQ(out.points[b1].Y(), 0.0);
+  EXPECT_NEAR(paths[0].arc[1], out.points[b1].X(), 1e-12);
+  // At the best place tried already: a second sweep finds no gain of half a degree.
+  EXPECT_TRUE(slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg, true).empty());
+}
+
 TEST(RemeshPieces, StripLineTakesThePointsAcrossShiftedAlongTheOtherSide) {
   // A line of 10 elements along x, the other side of the strip 0.01 away with points at 0.28,
   // 1.28, ... 5.28 (its segments end at x = 6): the points land there, the rest of the line
