@@ -93,11 +93,12 @@ std::vector<std::array<int, 2>> slidable_slots(const std::vector<LinePath>& path
 /// and each point alone cannot move without pushing the other's faces under the goal. Every pair
 /// of the places a point tries alone is weighed; the best is kept where the smallest angle off the
 /// wedge tips around both points reaches the goal and rises, no tip narrows and no face turns over.
-/// Returns whether a pair moved (both are then in `moved`).
+/// With `short_gain` > 0 a pair need only raise the smaller of the two rings' angles off the tips
+/// by that much (or to the goal). Returns whether a pair moved (both are then in `moved`).
 bool slide_with_partner(OutputMesh& out, std::vector<LinePath>& paths, const std::vector<std::array<int, 2>>& slot,
                         const FaceRings& rings, const std::unordered_set<std::uint64_t>& feature_keys,
                         const std::vector<double>& cumulative_v, int p, int i, const StarAngles& was_v,
-                        double goal_rad, std::vector<int>& moved) {
+                        double goal_rad, std::vector<int>& moved, double short_gain = 0) {
   LinePath& path_v = paths[size_t(p)];
   const int v = path_v.points[size_t(i)];
   auto ring_angles = [&](int x) { return star_angles(out.points, out.faces, rings, x, feature_keys); };
@@ -122,7 +123,9 @@ bool slide_with_partner(OutputMesh& out, std::vector<LinePath>& paths, const std
       const std::vector<Point3> normals_u = ring_normals(out, rings, u);
       const Point3 old_u = out.points[u];
       const double lo_u = path_u.arc[size_t(j) - 1], hi_u = path_u.arc[size_t(j) + 1];
-      double best = std::max(std::min(was_v.off_wedges, was_u.off_wedges), goal_rad - kAngleTie);
+      const double was = std::min(was_v.off_wedges, was_u.off_wedges);
+      double best = short_gain > 0 ? std::min(was + short_gain, goal_rad - kAngleTie)
+                                   : std::max(was, goal_rad - kAngleTie);
       double best_sv = -1, best_su = -1;
       Placement place_v, place_u;
       for (double tv : fractions)
@@ -235,6 +238,11 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
       if (best_arc < 0 && gain_arc >= 0) {
         best_arc = gain_arc;
         best_place = gain_place;
+      } else if (best_arc < 0 && short_of_goal && must_reach && was.off_wedges >= worse_than_rad &&
+                 was.off_wedges < goal_rad &&
+                 slide_with_partner(out, paths, slot, rings, feature_keys, cumulative, int(p), int(i), was, goal_rad,
+                                    moved, kMinGain)) {
+        continue;
       }
       if (best_arc < 0) continue;
       out.points[v] = best_place.point;

@@ -470,6 +470,56 @@ TEST(RemeshPieces, LinePointTakesTheBestGainShortOfTheGoalOnlyWhenAskedTo) {
   EXPECT_TRUE(slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg, true).empty());
 }
 
+TEST(RemeshPieces, TwoLinePointsTakeTheBestGainShortOfTheGoalTogether) {
+  // Two parallel lines 0.51 apart, y = 0 and y = 0.51 from x = 0 to 2, each with one slidable
+  // point (at 0.94 and 1.05) facing the other across the strip, and a free point beyond each
+  // line: every face has one of the two points, whose rings have 25.69 degrees. No slide of
+  // either alone reaches 30 or gains half a degree, and no pair reaches 30, so a plain sweep
+  // leaves them; asked for the best gain short of the goal, they slide together (27.02 at the
+  // best pair of places) and stay on their lines.
+  const double deg = 3.14159265358979323846 / 180.0;
+  OutputMesh out;
+  const int a0 = out.add_point(Point3(0, 0, 0), 0, PointKind::Corner);
+  const int a1 = out.add_point(Point3(0.94, 0, 0), 0, PointKind::Line);
+  const int a2 = out.add_point(Point3(2, 0, 0), 0, PointKind::Corner);
+  const int b0 = out.add_point(Point3(0, 0.51, 0), 0, PointKind::Corner);
+  const int b1 = out.add_point(Point3(1.05, 0.51, 0), 0, PointKind::Line);
+  const int b2 = out.add_point(Point3(2, 0.51, 0), 0, PointKind::Corner);
+  const int below = out.add_point(Point3(0.64, -1.31, 0), 0, PointKind::Free);
+  const int above = out.add_point(Point3(1.47, 1.79, 0), 0, PointKind::Free);
+  out.faces = {{a0, a1, b1}, {a0, b1, b0}, {a1, a2, b2}, {a1, b2, b1},
+               {a1, a0, below}, {a2, a1, below}, {b0, b1, above}, {b1, b2, above}};
+  out.face_patch = {0, 0, 0, 0, 1, 1, 2, 2};
+  auto worst = [&] {
+    double w = 1e9;
+    for (const auto& f : out.faces) w = std::min(w, min_angle(out.points, f));
+    return w / deg;
+  };
+  EXPECT_NEAR(worst(), 25.69, 0.01);
+  auto line = [](Point3 from, Point3 to, std::array<int, 3> points, double arc) {
+    LinePath path;
+    path.polyline = {from, to};
+    path.segment_host = {0};
+    path.points = {points[0], points[1], points[2]};
+    path.arc = {0.0, arc, 2.0};
+    path.slidable = {0, 1, 0};
+    return path;
+  };
+  std::vector<LinePath> paths{line(Point3(0, 0, 0), Point3(2, 0, 0), {a0, a1, a2}, 0.94),
+                              line(Point3(0, 0.51, 0), Point3(2, 0.51, 0), {b0, b1, b2}, 1.05)};
+  const std::vector<std::array<int, 2>> lines{{a0, a1}, {a1, a2}, {b0, b1}, {b1, b2}};
+  EXPECT_TRUE(slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg).empty());
+  EXPECT_EQ(out.points[a1], Point3(0.94, 0, 0));
+  EXPECT_EQ(out.points[b1], Point3(1.05, 0.51, 0));
+  const std::vector<int> moved = slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg, true);
+  EXPECT_EQ(moved, (std::vector<int>{a1, b1}));
+  EXPECT_NEAR(worst(), 27.02, 0.01);
+  EXPECT_EQ(out.points[a1].Y(), 0.0);
+  EXPECT_EQ(out.points[b1].Y(), 0.51);
+  EXPECT_NEAR(paths[0].arc[1], out.points[a1].X(), 1e-12);
+  EXPECT_NEAR(paths[1].arc[1], out.points[b1].X(), 1e-12);
+}
+
 TEST(RemeshPieces, StripLineTakesThePointsAcrossShiftedAlongTheOtherSide) {
   // A line of 10 elements along x, the other side of the strip 0.01 away with points at 0.28,
   // 1.28, ... 5.28 (its segments end at x = 6): the points land there, the rest of the line
