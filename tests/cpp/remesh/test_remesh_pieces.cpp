@@ -395,79 +395,68 @@ TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
   EXPECT_TRUE(slide_line_points(out, paths, lines, 5.0 * 3.14159265358979323846 / 180.0, 0.0).empty());
 }
 
-TEST(RemeshPieces, LinePointTakesASmallStepWhereNoneOfTheUsualPlacesReachesTheGoal) {
-  // A straight line from (0, 0) to (2, 0) with its point at 1, a free point on each side: the
-  // faces around the point have 29.37 degrees where it is and at most that at the nine places a
-  // slide tries first (sixths and twelfths of the arc), but 30.95 a 48th of the arc back (x =
-  // 0.958). Between the bounds (25 and 30 degrees) a slide must reach the goal: only that step
-  // does.
-  const double deg = 3.14159265358979323846 / 180.0;
-  OutputMesh out;
-  const int b0 = out.add_point(Point3(0, 0, 0), 0, PointKind::Corner);
-  const int b1 = out.add_point(Point3(1, 0, 0), 0, PointKind::Line);
-  const int b2 = out.add_point(Point3(2, 0, 0), 0, PointKind::Corner);
-  const int a = out.add_point(Point3(0.63, 1.42, 0), 0, PointKind::Free);
-  const int b = out.add_point(Point3(1.25, -1.29, 0), 0, PointKind::Free);
-  out.faces = {{b0, b1, a}, {b1, b2, a}, {b1, b0, b}, {b2, b1, b}};
-  out.face_patch = {0, 0, 1, 1};
-  auto worst = [&] {
+// A straight line from (0, 0) to (2, 0), corners at its ends and its one slidable point at 1,
+// with a free point on each side of it: four faces, all around the line point.
+struct StraightLineBetweenTwoFreePoints {
+  StraightLineBetweenTwoFreePoints(const Point3& above, const Point3& below) {
+    b0 = out.add_point(Point3(0, 0, 0), 0, PointKind::Corner);
+    b1 = out.add_point(Point3(1, 0, 0), 0, PointKind::Line);
+    b2 = out.add_point(Point3(2, 0, 0), 0, PointKind::Corner);
+    const int a = out.add_point(above, 0, PointKind::Free);
+    const int b = out.add_point(below, 0, PointKind::Free);
+    out.faces = {{b0, b1, a}, {b1, b2, a}, {b1, b0, b}, {b2, b1, b}};
+    out.face_patch = {0, 0, 1, 1};
+    LinePath line;
+    line.polyline = {Point3(0, 0, 0), Point3(2, 0, 0)};
+    line.segment_host = {3};
+    line.points = {b0, b1, b2};
+    line.arc = {0.0, 1.0, 2.0};
+    line.slidable = {0, 1, 0};
+    paths = {line};
+    lines = {{b0, b1}, {b1, b2}};
+  }
+  double worst_degrees() const {
     double w = 1e9;
     for (const auto& f : out.faces) w = std::min(w, min_angle(out.points, f));
-    return w / deg;
-  };
-  EXPECT_NEAR(worst(), 29.37, 0.01);
-  LinePath line;
-  line.polyline = {Point3(0, 0, 0), Point3(2, 0, 0)};
-  line.segment_host = {3};
-  line.points = {b0, b1, b2};
-  line.arc = {0.0, 1.0, 2.0};
-  line.slidable = {0, 1, 0};
-  std::vector<LinePath> paths{line};
-  const std::vector<std::array<int, 2>> lines{{b0, b1}, {b1, b2}};
-  EXPECT_EQ(slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg).size(), 1u);
-  EXPECT_NEAR(out.points[b1].X(), 2.0 * (0.5 - 1.0 / 48), 1e-12);
-  EXPECT_EQ(out.points[b1].Y(), 0.0);
-  EXPECT_NEAR(paths[0].arc[1], out.points[b1].X(), 1e-12);
-  EXPECT_NEAR(worst(), 30.95, 0.01);
+    return w * 180.0 / 3.14159265358979323846;
+  }
+  OutputMesh out;
+  int b0 = -1, b1 = -1, b2 = -1;
+  std::vector<LinePath> paths;
+  std::vector<std::array<int, 2>> lines;
+};
+
+TEST(RemeshPieces, LinePointTakesASmallStepWhereNoneOfTheUsualPlacesReachesTheGoal) {
+  // The faces around the point have 29.37 degrees where it is and at most that at the nine
+  // places a slide tries first (sixths and twelfths of the arc), but 30.95 a 48th of the arc
+  // back (x = 0.958). Between the bounds (25 and 30 degrees) a slide must reach the goal: only
+  // that step does.
+  const double deg = 3.14159265358979323846 / 180.0;
+  StraightLineBetweenTwoFreePoints m(Point3(0.63, 1.42, 0), Point3(1.25, -1.29, 0));
+  EXPECT_NEAR(m.worst_degrees(), 29.37, 0.01);
+  EXPECT_EQ(slide_line_points(m.out, m.paths, m.lines, 25.0 * deg, 30.0 * deg).size(), 1u);
+  EXPECT_NEAR(m.out.points[m.b1].X(), 2.0 * (0.5 - 1.0 / 48), 1e-12);
+  EXPECT_EQ(m.out.points[m.b1].Y(), 0.0);
+  EXPECT_NEAR(m.paths[0].arc[1], m.out.points[m.b1].X(), 1e-12);
+  EXPECT_NEAR(m.worst_degrees(), 30.95, 0.01);
 }
 
 TEST(RemeshPieces, LinePointTakesTheBestGainShortOfTheGoalOnlyWhenAskedTo) {
-  // A straight line from (0, 0) to (2, 0) with its point at 1 and a free point on each side:
-  // the faces around the point have 25.76 degrees, between the bounds (25 and 30), and no place
-  // a slide tries reaches 30 (the best gives 28.22). A plain sweep leaves the point
-  // where it is; asked for the best gain short of the goal, the point takes it.
+  // The faces around the point have 25.76 degrees, between the bounds (25 and 30), and no place
+  // a slide tries reaches 30 (the best gives 28.22). A plain sweep leaves the point where it is;
+  // asked for the best gain short of the goal, the point takes it.
   const double deg = 3.14159265358979323846 / 180.0;
-  OutputMesh out;
-  const int b0 = out.add_point(Point3(0, 0, 0), 0, PointKind::Corner);
-  const int b1 = out.add_point(Point3(1, 0, 0), 0, PointKind::Line);
-  const int b2 = out.add_point(Point3(2, 0, 0), 0, PointKind::Corner);
-  const int a = out.add_point(Point3(0.92, 1.05, 0), 0, PointKind::Free);
-  const int b = out.add_point(Point3(1.64, -0.88, 0), 0, PointKind::Free);
-  out.faces = {{b0, b1, a}, {b1, b2, a}, {b1, b0, b}, {b2, b1, b}};
-  out.face_patch = {0, 0, 1, 1};
-  auto worst = [&] {
-    double w = 1e9;
-    for (const auto& f : out.faces) w = std::min(w, min_angle(out.points, f));
-    return w / deg;
-  };
-  EXPECT_NEAR(worst(), 25.76, 0.01);
-  LinePath line;
-  line.polyline = {Point3(0, 0, 0), Point3(2, 0, 0)};
-  line.segment_host = {3};
-  line.points = {b0, b1, b2};
-  line.arc = {0.0, 1.0, 2.0};
-  line.slidable = {0, 1, 0};
-  std::vector<LinePath> paths{line};
-  const std::vector<std::array<int, 2>> lines{{b0, b1}, {b1, b2}};
-  EXPECT_TRUE(slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg).empty());
-  EXPECT_EQ(out.points[b1], Point3(1, 0, 0));
-  EXPECT_EQ(slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg, true).size(), 1u);
-  EXPECT_NEAR(worst(), 28.22, 0.01);
-  EXPECT_LT(worst(), 30.0);
-  EXPECT_EQ(out.points[b1].Y(), 0.0);
-  EXPECT_NEAR(paths[0].arc[1], out.points[b1].X(), 1e-12);
+  StraightLineBetweenTwoFreePoints m(Point3(0.92, 1.05, 0), Point3(1.64, -0.88, 0));
+  EXPECT_NEAR(m.worst_degrees(), 25.76, 0.01);
+  EXPECT_TRUE(slide_line_points(m.out, m.paths, m.lines, 25.0 * deg, 30.0 * deg).empty());
+  EXPECT_EQ(m.out.points[m.b1], Point3(1, 0, 0));
+  EXPECT_EQ(slide_line_points(m.out, m.paths, m.lines, 25.0 * deg, 30.0 * deg, true).size(), 1u);
+  EXPECT_NEAR(m.worst_degrees(), 28.22, 0.01);
+  EXPECT_LT(m.worst_degrees(), 30.0);
+  EXPECT_EQ(m.out.points[m.b1].Y(), 0.0);
+  EXPECT_NEAR(m.paths[0].arc[1], m.out.points[m.b1].X(), 1e-12);
   // At the best place tried already: a second sweep finds no gain of half a degree.
-  EXPECT_TRUE(slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg, true).empty());
+  EXPECT_TRUE(slide_line_points(m.out, m.paths, m.lines, 25.0 * deg, 30.0 * deg, true).empty());
 }
 
 TEST(RemeshPieces, TwoLinePointsTakeTheBestGainShortOfTheGoalTogether) {
