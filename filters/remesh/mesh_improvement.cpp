@@ -179,6 +179,14 @@ std::vector<char> region_around(const OutputMesh& out, const std::vector<int>& m
   return region;
 }
 
+// The points of `movable` within two rings of a changed one.
+std::vector<char> movable_around(const OutputMesh& out, const std::vector<int>& changed,
+                                 const std::vector<char>& movable) {
+  std::vector<char> near = region_around(out, changed);
+  for (size_t v = 0; v < near.size(); ++v) near[v] = near[v] && v < movable.size() && movable[v];
+  return near;
+}
+
 }  // namespace
 
 ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>& feature_edges,
@@ -225,9 +233,7 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
     r.moves += int(slid.size());
     changed.insert(changed.end(), slid.begin(), slid.end());
     if (changed.empty()) break;
-    std::vector<char> near_changed = region_around(out, changed);
-    for (size_t v = 0; v < near_changed.size(); ++v) near_changed[v] = near_changed[v] && movable[v];
-    r.moves += smooth_pass(out, locator, near_changed);
+    r.moves += smooth_pass(out, locator, movable_around(out, changed, movable));
   }
   // Then, where neither a slide of its own nor one in a pair lifts a line point's faces
   // between the bounds to the goal, the largest gain short of it (after the sweeps above, so
@@ -236,9 +242,7 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
     const std::vector<int> slid = slide_line_points(out, line_paths, feature_edges, kSlideBelow, kSlideGoal, true);
     r.moves += int(slid.size());
     if (slid.empty()) break;
-    std::vector<char> near_changed = region_around(out, slid);
-    for (size_t v = 0; v < near_changed.size(); ++v) near_changed[v] = near_changed[v] && movable[v];
-    r.moves += smooth_pass(out, locator, near_changed);
+    r.moves += smooth_pass(out, locator, movable_around(out, slid, movable));
   }
   // Last, free points whose faces stay under the goal (pinched between feature points, where
   // the ring's centre does not help) search nearby for better places; after the first sweep only
@@ -248,8 +252,7 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
     const std::vector<int> raised = raise_pinched_free_points(out, locator, searched, kSlideGoal);
     r.moves += int(raised.size());
     if (raised.empty()) break;
-    searched = region_around(out, raised);
-    for (size_t v = 0; v < searched.size(); ++v) searched[v] = searched[v] && v < movable.size() && movable[v];
+    searched = movable_around(out, raised, movable);
   }
   return r;
 }
