@@ -193,9 +193,9 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
       // lines no slide changes it) the smallest off the tips, as long as no tip narrows.
       double best = was.smallest(), best_off = was.off_wedges, best_arc = -1;
       Placement best_place;
-      // Between the bounds, the largest gain short of the goal: taken only where neither a
-      // slide of its own nor one in a pair reaches the goal.
-      double gain = was.smallest(), gain_arc = -1;
+      // Between the bounds, the largest gain short of the goal (at least kMinGain): taken only
+      // where neither a slide of its own nor one in a pair reaches the goal.
+      double gain = was.smallest() + kMinGain, gain_arc = -1;
       Placement gain_place;
       auto weigh = [&](double t, bool small_step = false) {
         const double s = lo + t * (hi - lo);
@@ -214,7 +214,7 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
           best_off = off;
           best_arc = s;
           best_place = place;
-        } else if (must_reach && short_of_goal && now.smallest() > gain + kMinGain) {
+        } else if (must_reach && short_of_goal && now.smallest() > gain) {
           gain = now.smallest();
           gain_arc = s;
           gain_place = place;
@@ -230,20 +230,19 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
             if (t >= kFractions[0] && t <= kFractions[4]) weigh(t, true);
       }
       out.points[v] = old;
-      // (Only from between the bounds: below them the pair rarely reaches the goal, and on a
-      // noisy scan's ridges every point would weigh its 81 pairs with each partner.)
-      if (best_arc < 0 && was.off_wedges >= worse_than_rad && was.off_wedges < goal_rad &&
-          slide_with_partner(out, paths, slot, rings, feature_keys, cumulative, int(p), int(i), was, goal_rad, moved))
-        continue;
+      // A gain of its own short of the goal comes before any pair: the plain sweeps before
+      // these already found no pair that reaches the goal from where the points were.
       if (best_arc < 0 && gain_arc >= 0) {
         best_arc = gain_arc;
         best_place = gain_place;
-      } else if (best_arc < 0 && short_of_goal && must_reach && was.off_wedges >= worse_than_rad &&
-                 was.off_wedges < goal_rad &&
-                 slide_with_partner(out, paths, slot, rings, feature_keys, cumulative, int(p), int(i), was, goal_rad,
-                                    moved, kMinGain)) {
-        continue;
       }
+      // (Only from between the bounds: below them the pair rarely reaches the goal, and on a
+      // noisy scan's ridges every point would weigh its 81 pairs with each partner.) Asked for
+      // gains short of the goal, one weighing of the pairs takes either.
+      if (best_arc < 0 && was.off_wedges >= worse_than_rad && was.off_wedges < goal_rad &&
+          slide_with_partner(out, paths, slot, rings, feature_keys, cumulative, int(p), int(i), was, goal_rad, moved,
+                             short_of_goal && must_reach ? kMinGain : 0.0))
+        continue;
       if (best_arc < 0) continue;
       out.points[v] = best_place.point;
       out.host[v] = path.segment_host[best_place.segment];

@@ -32,11 +32,11 @@ struct LinePath {
 /// slidable point of another line on one of its faces (at a corner where three lines leave, the
 /// face between two of them is bounded by both first segments); such a pair is kept only where
 /// the smallest angle off the wedge tips around both points reaches the goal.
-/// With `short_of_goal`, a point between the two bounds that neither reaches the goal takes the
-/// place of its own with the largest gain short of it (at least half a degree), else the pair of
-/// places with a partner that raises the smaller of their rings' angles off the tips most (by as
-/// much); the caller asks for that only once the plain sweeps are over, so that it stands in no
-/// later slide's way.
+/// With `short_of_goal`, a point between the two bounds that does not reach the goal alone takes
+/// the place of its own with the largest gain short of it (at least half a degree), else the
+/// pair of places with a partner that reaches the goal or raises the smaller of their rings'
+/// angles off the tips most (by as much); the caller asks for that only once the plain sweeps are
+/// over, so that it stands in no later slide's way.
 /// Where the smallest angle around the point is a wedge tip's between `feature_edges`
 /// (wedge_tips.h), which no slide along a straight line changes, the smallest angle off the tips
 /// decides, or no point beside a tip would move.

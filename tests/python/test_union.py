@@ -519,8 +519,8 @@ def test_fifty_sphere_cluster_regrid_with_relaxed_wedges_nearly_reaches_30_degre
     # With relax_wedges the cluster's eight triple-point wedges go and what is left is the mesh's:
     # where two intersection lines diverge from a neck their points faced each other across the
     # strip between them (25.5 and 27.3 degrees). Line points there now take the largest gain
-    # short of 30 degrees, alone or in a pair (line_sliding.h). Measured (stop 56): 25.50 -> 29.69
-    # degrees, three faces under 30.
+    # short of 30 degrees, alone or in a pair (line_sliding.h). Measured (stop 56): 25.50 -> 29.56
+    # degrees, four faces under 30.
     from meshregrid import pipeline_union
     ms = _benchmark_cluster(50)
     r = pipeline_union.union(ms, remesh=True, target_percent=1.0, relax_wedges=True)["remesh"]
