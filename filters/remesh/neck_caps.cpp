@@ -19,6 +19,10 @@ constexpr double kNeck = 0.15;
 // Caps never go below kFloor x target; 1.7 x the width gives 30-degree right triangles across
 // the neck (the same bounds as thin steps, thin_step_caps.cpp).
 constexpr double kFloor = 0.05, kCap = 1.7;
+// Between two lines the caller gave, caps go down to this x target: held at kFloor, strips
+// under 0.03 x target wide between two intersection circles kept rows of faces of 22-26 degrees
+// (the 200-sphere cluster at 1%, 0.002 wide). Lines found by their dihedral angle keep kFloor.
+constexpr double kGivenFloor = 0.02;
 // Consecutive neck points along a line that make a neck. Measured on fuzz_union --models seeds
 // 0-95 at 1% and 0-23 at 2%, union then regrid: with runs of 3, 17 of 120 regrids better and
 // none worse; with runs of 2, reach 0.1 x target 26 better and one worse, 0.15 35 better but the
@@ -101,22 +105,31 @@ int cap_necks(const Surface& s, const std::vector<features::DiscreteLine>& lines
   auto is_given = [&](int line) { return size_t(line) < given.size() && given[size_t(line)] != 0; };
   int capped = 0;
   std::vector<double> width;  // per point of the line: distance to the nearest other line, or -1
+  std::vector<char> width_given;  // per point: that nearest line and this one were both given
   for (int l = 0; l < int(lines.size()); ++l) {
     const auto& v = lines[size_t(l)].vertices;
     const size_t n = v.size();
     width.assign(n, -1.0);
+    width_given.assign(n, 0);
     const bool l_given = is_given(l);
     for (size_t k = 0; k < n; ++k) {
       const Point3& p = s.points[size_t(v[k])];
       double nearest = HUGE_VAL;
+      bool nearest_given = false;
       grid.visit(p, 0.0, [&](int q) {
         const Segment& g = segments[size_t(q)];
         if (g.line == l) return;
         const double d = point_segment_distance(p, s.points[size_t(g.a)], s.points[size_t(g.b)]);
         const bool both_given = l_given && is_given(g.line);
-        if (d < nearest && d > 0 && d < (both_given ? wide : narrow) && !meet(l, g.line)) nearest = d;
+        if (d < nearest && d > 0 && d < (both_given ? wide : narrow) && !meet(l, g.line)) {
+          nearest = d;
+          nearest_given = both_given;
+        }
       });
-      if (nearest < reach) width[k] = nearest;
+      if (nearest < reach) {
+        width[k] = nearest;
+        width_given[k] = nearest_given;
+      }
     }
     // A neck is a run of at least kMinRun such points along the line: fewer are where two lines
     // touch in passing (the twin ridges of a noisy scan, which caps there pinched the front on
@@ -146,7 +159,7 @@ int cap_necks(const Surface& s, const std::vector<features::DiscreteLine>& lines
     if (reach > narrow) mark_runs(reach, kMinGivenRun);
     for (size_t k = 0; k < n; ++k) {
       if (!keep[k]) continue;
-      const double h = std::max(kCap * width[k], kFloor * target);
+      const double h = std::max(kCap * width[k], (width_given[k] ? kGivenFloor : kFloor) * target);
       double& c = cap[size_t(v[k])];
       c = c > 0 ? std::min(c, h) : h;
       ++capped;
