@@ -26,7 +26,7 @@ std::vector<char> given_lines(const TriMesh& mesh, const std::vector<features::D
 /// at too, and only in runs of at least three such points in a row along the line. The cap
 /// is 1.7 x that distance, never below 0.05 x `target`. Between two lines that are both `given`
 /// (per line, as given_lines; missing entries are 0) the reach is 0.45 x `target`, in runs of at
-/// least five points, and the floor 0.02 x `target`. Returns the number of points capped.
+/// least five points, and the floor 0.01 x `target`. Returns the number of points capped.
 int cap_necks(const Surface& s, const std::vector<features::DiscreteLine>& lines, const std::vector<char>& given,
               double target, std::vector<double>& cap);
 

@@ -533,10 +533,10 @@ def test_fifty_sphere_cluster_regrid_with_relaxed_wedges_nearly_reaches_30_degre
 
 
 def test_two_hundred_sphere_cluster_regrid_refines_the_narrowest_necks():
-    # Between two intersection lines the neck caps go down to 0.02 x target (neck_caps.cpp): at
+    # Between two intersection lines the neck caps go down to 0.01 x target (neck_caps.cpp): at
     # 0.05 x target, strips under 0.03 x target wide between two circles kept faces of the floor's
     # spacing. Measured (stop 57) at 2%: 13.31 -> 14.34 degrees, with relax_wedges 13.31 -> 19.23
-    # (220 faces more of 20,000).
+    # (246 faces more of 20,000).
     from meshregrid import pipeline_union
     ms = _benchmark_cluster(200)
     r = pipeline_union.union(ms, remesh=True, target_percent=2.0, relax_wedges=True)["remesh"]

@@ -1,5 +1,5 @@
 // Neck caps: line points closer than 0.15 x target to another line (0.45 x target between two
-// lines the caller gave) get caps of 1.7 x that distance (never below 0.05 x target, 0.02 x
+// lines the caller gave) get caps of 1.7 x that distance (never below 0.05 x target, 0.01 x
 // target between two given lines); lines farther apart get none, and neither do two lines that
 // end at one corner (a wedge) nor one or two points where two lines touch in passing.
 #include "remesh/neck_caps.h"
@@ -145,22 +145,22 @@ TEST(RemeshNeckCaps, TwoGivenLinesAreCappedFromAWiderReach) {
 }
 
 TEST(RemeshNeckCaps, TwoGivenLinesHaveALowerFloor) {
-  // 0.01 x target apart: 1.7 x that is under both floors. Found lines stop at 0.05 x target,
-  // given ones at 0.02 x target; 0.03 x target apart, 1.7 x the width is above that.
+  // 0.004 x target apart: 1.7 x that is under both floors. Found lines stop at 0.05 x target,
+  // given ones at 0.01 x target; 0.02 x target apart, 1.7 x the width is above that.
   std::vector<Point3> points;
   std::vector<features::DiscreteLine> lines;
   const double target = 0.1;
-  two_lines(0.001, 10, false, points, lines);
+  two_lines(0.0004, 10, false, points, lines);
   std::vector<double> cap(points.size(), 0.0);
   EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 0}, target, cap), 22);
   for (double c : cap) EXPECT_NEAR(c, 0.05 * target, 1e-12);
   cap.assign(points.size(), 0.0);
   EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 1}, target, cap), 22);
-  for (double c : cap) EXPECT_NEAR(c, 0.02 * target, 1e-12);
-  two_lines(0.003, 10, false, points, lines);
+  for (double c : cap) EXPECT_NEAR(c, 0.01 * target, 1e-12);
+  two_lines(0.002, 10, false, points, lines);
   cap.assign(points.size(), 0.0);
   EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 1}, target, cap), 22);
-  for (double c : cap) EXPECT_NEAR(c, 1.7 * 0.003, 1e-12);
+  for (double c : cap) EXPECT_NEAR(c, 1.7 * 0.002, 1e-12);
 }
 
 TEST(RemeshNeckCaps, ALineIsGivenWhenEveryEdgeOfItIsASelectedFaceEdge) {
