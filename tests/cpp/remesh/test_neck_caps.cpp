@@ -127,40 +127,35 @@ TEST(RemeshNeckCaps, AClosedLineCountsARunAcrossItsSeam) {
   for (int v : {0, 4, 5}) EXPECT_NEAR(cap[size_t(v)], 1.7 * 0.004, 1e-12) << v;
 }
 
-TEST(RemeshNeckCaps, TwoGivenLinesAreCappedFromAWiderReach) {
-  // 0.3 x target apart: beyond the reach between found lines, within the one between given lines.
+namespace {
+
+// Two open lines `gap` apart (two_lines, 10 segments), target 0.1: `count` points capped, each
+// at `each` (0: none).
+void expect_caps(double gap, const std::vector<char>& given, int count, double each) {
   std::vector<Point3> points;
   std::vector<features::DiscreteLine> lines;
-  const double target = 0.1;
-  two_lines(0.03, 10, false, points, lines);
+  two_lines(gap, 10, false, points, lines);
   std::vector<double> cap(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 0}, target, cap), 0);  // one given line is not enough
-  for (double c : cap) EXPECT_EQ(c, 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 1}, target, cap), 22);
-  for (double c : cap) EXPECT_NEAR(c, 1.7 * 0.03, 1e-12);
+  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, given, 0.1, cap), count) << gap;
+  for (double c : cap) EXPECT_NEAR(c, each, 1e-12) << gap;
+}
+
+}  // namespace
+
+TEST(RemeshNeckCaps, TwoGivenLinesAreCappedFromAWiderReach) {
+  // 0.3 x target apart: beyond the reach between found lines, within the one between given lines.
+  expect_caps(0.03, {1, 0}, 0, 0.0);  // one given line is not enough
+  expect_caps(0.03, {1, 1}, 22, 1.7 * 0.03);
   // 0.5 x target apart: beyond both reaches.
-  two_lines(0.05, 10, false, points, lines);
-  cap.assign(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 1}, target, cap), 0);
+  expect_caps(0.05, {1, 1}, 0, 0.0);
 }
 
 TEST(RemeshNeckCaps, TwoGivenLinesHaveALowerFloor) {
   // 0.004 x target apart: 1.7 x that is under both floors. Found lines stop at 0.05 x target,
   // given ones at 0.01 x target; 0.02 x target apart, 1.7 x the width is above that.
-  std::vector<Point3> points;
-  std::vector<features::DiscreteLine> lines;
-  const double target = 0.1;
-  two_lines(0.0004, 10, false, points, lines);
-  std::vector<double> cap(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 0}, target, cap), 22);
-  for (double c : cap) EXPECT_NEAR(c, 0.05 * target, 1e-12);
-  cap.assign(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 1}, target, cap), 22);
-  for (double c : cap) EXPECT_NEAR(c, 0.01 * target, 1e-12);
-  two_lines(0.002, 10, false, points, lines);
-  cap.assign(points.size(), 0.0);
-  EXPECT_EQ(remesh::cap_necks(points_only(points), lines, {1, 1}, target, cap), 22);
-  for (double c : cap) EXPECT_NEAR(c, 1.7 * 0.002, 1e-12);
+  expect_caps(0.0004, {1, 0}, 22, 0.05 * 0.1);
+  expect_caps(0.0004, {1, 1}, 22, 0.01 * 0.1);
+  expect_caps(0.002, {1, 1}, 22, 1.7 * 0.002);
 }
 
 TEST(RemeshNeckCaps, ALineIsGivenWhenEveryEdgeOfItIsASelectedFaceEdge) {
