@@ -21,6 +21,17 @@ using namespace mr;
 using namespace mr::remesh;
 using P2 = vcg::Point2d;
 
+namespace {
+
+// The smallest angle of `out`'s faces, in degrees.
+double worst_degrees(const OutputMesh& out) {
+  double w = 1e9;
+  for (const auto& f : out.faces) w = std::min(w, min_angle(out.points, f));
+  return w * 180.0 / 3.14159265358979323846;
+}
+
+}  // namespace
+
 TEST(RemeshPieces, CrossingCheck2D) {
   EXPECT_TRUE(segments_cross_2d(P2(0, 0), P2(2, 2), P2(0, 2), P2(2, 0), 1e-12));
   EXPECT_FALSE(segments_cross_2d(P2(0, 0), P2(1, 1), P2(0, 2), P2(2, 2), 1e-12));
@@ -338,11 +349,7 @@ TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
   b.arc = {0.0, 1.0, 2.0};
   b.slidable = {0, 1, 0};
   std::vector<LinePath> paths{b};
-  auto worst = [&] {
-    double w = 1e9;
-    for (const auto& f : out.faces) w = std::min(w, min_angle(out.points[f[0]], out.points[f[1]], out.points[f[2]]));
-    return w * 180.0 / 3.14159265358979323846;
-  };
+  auto worst = [&] { return worst_degrees(out); };
   auto worst_beyond_tip = [&] {
     double w = 1e9;
     for (size_t f = 1; f < out.faces.size(); ++f) w = std::min(w, min_angle(out.points, out.faces[f]));
@@ -395,6 +402,8 @@ TEST(RemeshPieces, LinePointSlidesAlongItsLineAtAConvergingCreaseTip) {
   EXPECT_TRUE(slide_line_points(out, paths, lines, 5.0 * 3.14159265358979323846 / 180.0, 0.0).empty());
 }
 
+namespace {
+
 // A straight line from (0, 0) to (2, 0), corners at its ends and its one slidable point at 1,
 // with a free point on each side of it: four faces, all around the line point.
 struct StraightLineBetweenTwoFreePoints {
@@ -415,16 +424,14 @@ struct StraightLineBetweenTwoFreePoints {
     paths = {line};
     lines = {{b0, b1}, {b1, b2}};
   }
-  double worst_degrees() const {
-    double w = 1e9;
-    for (const auto& f : out.faces) w = std::min(w, min_angle(out.points, f));
-    return w * 180.0 / 3.14159265358979323846;
-  }
+  double worst_degrees() const { return ::worst_degrees(out); }
   OutputMesh out;
   int b0 = -1, b1 = -1, b2 = -1;
   std::vector<LinePath> paths;
   std::vector<std::array<int, 2>> lines;
 };
+
+}  // namespace
 
 TEST(RemeshPieces, LinePointTakesASmallStepWhereNoneOfTheUsualPlacesReachesTheGoal) {
   // The faces around the point have 29.37 degrees where it is and at most that at the nine
@@ -482,12 +489,7 @@ TEST(RemeshPieces, TwoLinePointsTakeTheBestGainShortOfTheGoalTogether) {
   out.faces = {{a0, a1, b1}, {a0, b1, b0}, {a1, a2, b2}, {a1, b2, b1},
                {a1, a0, below}, {a2, a1, below}, {b0, b1, above}, {b1, b2, above}};
   out.face_patch = {0, 0, 0, 0, 1, 1, 2, 2};
-  auto worst = [&] {
-    double w = 1e9;
-    for (const auto& f : out.faces) w = std::min(w, min_angle(out.points, f));
-    return w / deg;
-  };
-  EXPECT_NEAR(worst(), 25.69, 0.01);
+  EXPECT_NEAR(worst_degrees(out), 25.69, 0.01);
   auto line = [](Point3 from, Point3 to, std::array<int, 3> points, double arc) {
     LinePath path;
     path.polyline = {from, to};
@@ -505,7 +507,7 @@ TEST(RemeshPieces, TwoLinePointsTakeTheBestGainShortOfTheGoalTogether) {
   EXPECT_EQ(out.points[b1], Point3(1.05, 0.51, 0));
   const std::vector<int> moved = slide_line_points(out, paths, lines, 25.0 * deg, 30.0 * deg, true);
   EXPECT_EQ(moved, (std::vector<int>{a1, b1}));
-  EXPECT_NEAR(worst(), 27.02, 0.01);
+  EXPECT_NEAR(worst_degrees(out), 27.02, 0.01);
   EXPECT_EQ(out.points[a1].Y(), 0.0);
   EXPECT_EQ(out.points[b1].Y(), 0.51);
   EXPECT_NEAR(paths[0].arc[1], out.points[a1].X(), 1e-12);
