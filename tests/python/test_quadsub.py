@@ -308,6 +308,22 @@ def test_error_threshold_refines_more_where_the_surface_bends_more():
     assert finer["faces_out"] > r["faces_out"] and finer["faces_refined_level_0"] > r["faces_refined_level_0"]
 
 
+def test_adaptive_refinement_gives_the_same_mesh_twice():
+    # Error-driven refinement picks faces by a threshold and balances their neighbours; the
+    # same input and parameters must give the same polygons, level by level.
+    runs = []
+    for _ in range(2):
+        ms = load_polygons("quad/spot_quadrangulated.obj")
+        ms.meshing_surface_subdivision_interpolatory_quad(iterations=2, adaptive=2,
+                                                          error_threshold=pymeshlab.PercentageValue(0.05))
+        out = ms.current_mesh()
+        runs.append((out.vertex_matrix().copy(), out.face_matrix().copy(), out.polygonal_face_list(),
+                     out.face_custom_scalar_attribute_array("subdivision_level").copy()))
+    (v0, f0, p0, l0), (v1, f1, p1, l1) = runs
+    assert np.array_equal(v0, v1) and np.array_equal(f0, f1) and np.array_equal(l0, l1)
+    assert [list(p) for p in p0] == [list(p) for p in p1]
+
+
 @pytest.mark.parametrize("bad, message", [(dict(adaptive=1), "no face is selected"),
                                           (dict(adaptive=2, error_threshold=pymeshlab.PureValue(0)), "error_threshold")])
 def test_bad_adaptive_input_raises_and_leaves_the_mesh(bad, message):
