@@ -3,7 +3,7 @@
 import pathlib
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
-ORDER = ["features", "remesh", "remesh_200k", "union", "healing", "quadsub"]
+ORDER = ["features", "remesh", "remesh_200k", "union", "union_regrid", "healing", "quadsub"]
 
 
 def main():
