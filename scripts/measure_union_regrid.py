@@ -34,36 +34,30 @@ def _layers(bodies):
     return ms
 
 
-def _sphere_and_cylinder():
+# Synthetic cases as recipes of MeshLab filter calls: each create_* adds a body, each
+# compute_matrix_* moves the last one.
+RECIPES = {
+    "sphere + cylinder (64 segments)": [
+        ("create_sphere", {"subdiv": 4}), ("create_cone", {"r0": 0.4, "r1": 0.4, "h": 3, "subdiv": 64}),
+        ("compute_matrix_from_translation", {"axisx": 0.1, "axisy": 0.05})],
+    "two spheres": [
+        ("create_sphere", {"subdiv": 4}), ("create_sphere", {"subdiv": 4}),
+        ("compute_matrix_from_translation", {"axisx": 0.7, "axisy": 0.2, "axisz": 0.1})],
+    "cube + copy shifted by half": [
+        ("create_cube", {"size": 1.0}), ("create_cube", {"size": 1.0}),
+        ("compute_matrix_from_translation", {"axisx": 0.5, "axisy": 0.5, "axisz": 0.5})],
+    "crossed cylinders": [
+        ("create_cone", {"r0": 0.4, "r1": 0.4, "h": 3, "subdiv": 64}),
+        ("create_cone", {"r0": 0.3, "r1": 0.3, "h": 3, "subdiv": 64}),
+        ("compute_matrix_from_rotation", {"rotaxis": "X axis", "angle": 90}),
+        ("compute_matrix_from_translation", {"axisx": 0.05})],
+}
+
+
+def _built(recipe):
     ms = pymeshlab.MeshSet()
-    ms.create_sphere(subdiv=4)
-    ms.create_cone(r0=0.4, r1=0.4, h=3, subdiv=64)
-    ms.compute_matrix_from_translation(axisx=0.1, axisy=0.05)
-    return ms
-
-
-def _two_spheres():
-    ms = pymeshlab.MeshSet()
-    ms.create_sphere(subdiv=4)
-    ms.create_sphere(subdiv=4)
-    ms.compute_matrix_from_translation(axisx=0.7, axisy=0.2, axisz=0.1)
-    return ms
-
-
-def _cube_and_half_shifted_copy():
-    ms = pymeshlab.MeshSet()
-    ms.create_cube(size=1.0)
-    ms.create_cube(size=1.0)
-    ms.compute_matrix_from_translation(axisx=0.5, axisy=0.5, axisz=0.5)
-    return ms
-
-
-def _crossed_cylinders():
-    ms = pymeshlab.MeshSet()
-    ms.create_cone(r0=0.4, r1=0.4, h=3, subdiv=64)
-    ms.create_cone(r0=0.3, r1=0.3, h=3, subdiv=64)
-    ms.compute_matrix_from_rotation(rotaxis="X axis", angle=90)
-    ms.compute_matrix_from_translation(axisx=0.05)
+    for name, kwargs in recipe:
+        getattr(ms, name)(**kwargs)
     return ms
 
 
@@ -71,10 +65,7 @@ CASES = {
     "ballA + ballB": lambda: _layers(bench_union.bodies_of("balls")),
     "box.STL (10 plates)": lambda: _layers(bench_union.bodies_of("box.STL")),
     "rabbit.obj (9 blobs)": lambda: _layers(bench_union.bodies_of("rabbit.obj")),
-    "sphere + cylinder (64 segments)": _sphere_and_cylinder,
-    "two spheres": _two_spheres,
-    "cube + copy shifted by half": _cube_and_half_shifted_copy,
-    "crossed cylinders": _crossed_cylinders,
+    **{name: (lambda recipe=recipe: _built(recipe)) for name, recipe in RECIPES.items()},
     "10 spheres": lambda: _layers(bench_union.sphere_cluster(10, 3)),
     "50 spheres": lambda: _layers(bench_union.sphere_cluster(50, 3)),
     "200 spheres": lambda: _layers(bench_union.sphere_cluster(200, 3)),
