@@ -26,6 +26,9 @@ import meshregrid  # noqa: E402,F401  (loads the plugins)
 from meshregrid import pipeline_union  # noqa: E402
 
 SAME = 1e-6  # degrees: angles closer than this are the same
+# MeshSets whose filter raised, kept until the end: PyMeshLab 2025.07 keeps a pointer to such a
+# set's log, and a later load elsewhere could write to it once the set is freed (README).
+_RAISED = []
 
 
 def run_seed(seed, models, percent, relax):
@@ -38,6 +41,7 @@ def run_seed(seed, models, percent, relax):
     try:
         r = pipeline_union.union(ms, remesh=True, target_percent=percent, relax_wedges=relax)
     except pymeshlab.PyMeshLabException as e:
+        _RAISED.append(ms)
         out["error"] = str(e).splitlines()[0]
         return out
     rr = r["remesh"]

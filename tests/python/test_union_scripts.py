@@ -1,6 +1,5 @@
 """The union's measuring scripts run and report what they measure (smallest cases only)."""
 import json
-import os
 import subprocess
 import sys
 
@@ -11,7 +10,7 @@ from conftest import REPO, SHARED_DATA
 
 def run_script(name, *args):
     return subprocess.run([sys.executable, str(REPO / "scripts" / name), *args], capture_output=True, text=True,
-                          timeout=600, env=dict(os.environ))
+                          timeout=600)
 
 
 def table_rows(markdown):
