@@ -1,6 +1,7 @@
 #include "remesh/line_sliding.h"
 
 #include "remesh/face_rings.h"
+#include "remesh/line_arcs.h"
 #include "remesh/star_shape.h"
 #include "remesh/triangle_geometry.h"
 
@@ -34,27 +35,6 @@ constexpr double kAngleTie = 1e-9;
 // A slide between the bounds that falls short of the goal must gain at least this (radians).
 constexpr double kMinGain = 0.5 * 3.14159265358979323846 / 180.0;
 
-struct Placement {
-  Point3 point;
-  int segment = 0;
-};
-
-Placement at_arc(const LinePath& path, const std::vector<double>& cumulative, double s) {
-  const size_t segs = path.polyline.size() - 1;
-  size_t seg = std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin();
-  seg = std::clamp<size_t>(seg, 1, segs) - 1;
-  const double len = cumulative[seg + 1] - cumulative[seg];
-  const double u = len > 0 ? std::clamp((s - cumulative[seg]) / len, 0.0, 1.0) : 0.0;
-  return {path.polyline[seg] * (1 - u) + path.polyline[seg + 1] * u, int(seg)};
-}
-
-/// Arc length along the path's polyline at each of its vertices.
-std::vector<double> cumulative_arc(const LinePath& path) {
-  std::vector<double> c(path.polyline.size(), 0.0);
-  for (size_t j = 1; j < path.polyline.size(); ++j) c[j] = c[j - 1] + (path.polyline[j] - path.polyline[j - 1]).Norm();
-  return c;
-}
-
 /// Unit normals of the faces around point x, in ring order.
 std::vector<Point3> ring_normals(const OutputMesh& out, const FaceRings& rings, int x) {
   std::vector<Point3> n;
@@ -74,17 +54,6 @@ bool ring_folded(const OutputMesh& out, const FaceRings& rings, int x, const std
       return true;
   }
   return false;
-}
-
-/// Per output point: the path and index where it may slide, or {-1, -1}.
-std::vector<std::array<int, 2>> slidable_slots(const std::vector<LinePath>& paths, size_t nv) {
-  std::vector<std::array<int, 2>> slot(nv, {-1, -1});
-  for (size_t p = 0; p < paths.size(); ++p) {
-    if (paths[p].polyline.size() < 2) continue;
-    for (size_t i = 1; i + 1 < paths[p].points.size(); ++i)
-      if (paths[p].slidable[i]) slot[size_t(paths[p].points[i])] = {int(p), int(i)};
-  }
-  return slot;
 }
 
 /// Point v (index i of path p), which no slide of its own lifts to the goal, slides together with
@@ -127,11 +96,11 @@ bool slide_with_partner(OutputMesh& out, std::vector<LinePath>& paths, const std
       double best = short_gain > 0 ? std::min(was + short_gain, goal_rad - kAngleTie)
                                    : std::max(was, goal_rad - kAngleTie);
       double best_sv = -1, best_su = -1;
-      Placement place_v, place_u;
+      ArcPlacement place_v, place_u;
       for (double tv : fractions)
         for (double tu : fractions) {
           const double sv = lo_v + tv * (hi_v - lo_v), su = lo_u + tu * (hi_u - lo_u);
-          const Placement pv = at_arc(path_v, cumulative_v, sv), pu = at_arc(path_u, cumulative_u, su);
+          const ArcPlacement pv = at_arc(path_v, cumulative_v, sv), pu = at_arc(path_u, cumulative_u, su);
           out.points[v] = pv.point;
           out.points[u] = pu.point;
           if (ring_folded(out, rings, v, normals_v) || ring_folded(out, rings, u, normals_u)) continue;
@@ -192,14 +161,14 @@ std::vector<int> slide_line_points(OutputMesh& out, std::vector<LinePath>& paths
       // The smallest angle decides, and where it stays at a wedge tip (between two straight
       // lines no slide changes it) the smallest off the tips, as long as no tip narrows.
       double best = was.smallest(), best_off = was.off_wedges, best_arc = -1;
-      Placement best_place;
+      ArcPlacement best_place;
       // Between the bounds, the largest gain short of the goal (at least kMinGain): taken only
       // where neither a slide of its own nor one in a pair reaches the goal.
       double gain = was.smallest() + kMinGain, gain_arc = -1;
-      Placement gain_place;
+      ArcPlacement gain_place;
       auto weigh = [&](double t, bool small_step = false) {
         const double s = lo + t * (hi - lo);
-        const Placement place = at_arc(path, cumulative, s);
+        const ArcPlacement place = at_arc(path, cumulative, s);
         out.points[v] = place.point;
         if (ring_folded(out, rings, v, old_normal)) return;
         const StarAngles now = ring_angles(v);

@@ -3,6 +3,7 @@
 #include "remesh/angle_smoothing.h"
 #include "remesh/defect_reduction.h"
 #include "remesh/face_rings.h"
+#include "remesh/joint_polish.h"
 #include "remesh/length_equalisation.h"
 #include "remesh/line_point_removal.h"
 #include "remesh/side_faces.h"
@@ -253,6 +254,13 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
     r.moves += int(raised.size());
     if (raised.empty()) break;
     searched = movable_around(out, raised, movable);
+  }
+  // Where faces still stay under the goal, every single move above made a neighbour worse: the
+  // points around them search their places together (joint_polish.h).
+  for (int it = 0; it < iterations; ++it) {
+    const std::vector<int> polished = polish_jointly(out, line_paths, feature_edges, locator, movable, kSlideGoal);
+    r.jointly_moved += int(polished.size());
+    if (polished.empty()) break;
   }
   return r;
 }

@@ -383,6 +383,7 @@ Result finish(Fronts& run, TriMesh& output) {
       improve_mesh(out, feature_edges, locator, size, params.improvement_iterations, ff.line_paths, {}, params.relax_wedges);
   result.line_points_removed = ir.line_points_removed;
   result.relaxed_wedges = ir.relaxed_wedges;
+  result.jointly_moved = ir.jointly_moved;
   result.feature_edges = int(feature_edges.size());
   result.swaps = ir.swaps;
   result.smoothed = ir.moves;
@@ -401,6 +402,7 @@ Result finish(Fronts& run, TriMesh& output) {
     result.smoothed += again.moves;
     result.collapsed += again.collapsed;
     result.split += again.split;
+    result.jointly_moved += again.jointly_moved;
   }
 
   // Last, pairs that bridge a crease stage 1 dropped turn to follow it (rocker-arm at 1%: 7 swaps,

@@ -201,6 +201,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"flat_pockets_removed", QVariant(r.flat_pockets_removed)},
       {"line_points_removed", QVariant(r.line_points_removed)},
       {"relaxed_wedges", QVariant(r.relaxed_wedges)},
+      {"jointly_moved", QVariant(r.jointly_moved)},
       {"kept_folded_slivers", QVariant(r.kept_folded_slivers)},
       {"kept_crumples", QVariant(r.kept_crumples)},
       {"non_manifold_points", QVariant(r.non_manifold_points)},
