@@ -23,9 +23,12 @@ namespace mr::remesh {
 /// off the tips, nearest to the goal and a little beyond. The search's result is kept only
 /// where the smallest angle there, off the tips, reaches the goal, no tip narrows and no face
 /// turns by more than 60 degrees; otherwise the points go back. `paths` and the hosts follow
-/// the moves. Returns the points moved, in the order they moved (each once per search).
+/// the moves. Only faces with a corner in `near` (all when empty) are looked at; faces more
+/// than 10 degrees under the goal are not (no place of their points mends them: a plate's rim,
+/// an input's wedge). Returns the points moved, in the order they moved (each once per search).
 std::vector<int> polish_jointly(OutputMesh& out, std::vector<LinePath>& paths,
                                 const std::vector<std::array<int, 2>>& feature_edges, const SurfaceLocator& locator,
-                                const std::vector<char>& movable, double goal_rad);
+                                const std::vector<char>& movable, double goal_rad,
+                                const std::vector<char>& near = {});
 
 }  // namespace mr::remesh

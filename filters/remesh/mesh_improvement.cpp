@@ -257,10 +257,15 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
   }
   // Where faces still stay under the goal, every single move above made a neighbour worse: the
   // points around them search their places together (joint_polish.h).
+  // After the first sweep only faces near a point that moved (the others' searches would find
+  // what they found).
+  std::vector<char> near(out.points.size(), 1);
   for (int it = 0; it < iterations; ++it) {
-    const std::vector<int> polished = polish_jointly(out, line_paths, feature_edges, locator, movable, kSlideGoal);
+    const std::vector<int> polished =
+        polish_jointly(out, line_paths, feature_edges, locator, movable, kSlideGoal, near);
     r.jointly_moved += int(polished.size());
     if (polished.empty()) break;
+    near = region_around(out, polished);
   }
   return r;
 }
