@@ -515,21 +515,23 @@ def test_fifty_sphere_cluster_regrid_keeps_its_necks_over_20_degrees():
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
-def test_fifty_sphere_cluster_regrid_with_relaxed_wedges_nearly_reaches_30_degrees():
+def test_fifty_sphere_cluster_regrid_with_relaxed_wedges_reaches_30_degrees():
     # With relax_wedges the cluster's eight triple-point wedges go and what is left is the mesh's:
     # where two intersection lines diverge from a neck their points faced each other across the
-    # strip between them (25.5 and 27.3 degrees). Line points there now take the largest gain
-    # short of 30 degrees, alone or in a pair (line_sliding.h). Measured (stop 56): 25.50 -> 29.56
-    # degrees, four faces under 30.
+    # strip between them (25.5 and 27.3 degrees). Line points there take the largest gain short of
+    # 30 degrees, alone or in a pair (line_sliding.h): 29.56 at 1% and 29.29 at 2% (stop 56), the
+    # faces around balanced so that any single move made a neighbour worse. Moving the points
+    # around such a face together (joint_polish.h, stop 59) lifts them: 30.03 and 30.04 degrees.
     from meshregrid import pipeline_union
-    ms = _benchmark_cluster(50)
-    r = pipeline_union.union(ms, remesh=True, target_percent=1.0, relax_wedges=True)["remesh"]
-    assert r["unmeshed_sides"] == 0 and r["wedge_tips"] == 0
-    a = angles(ms.current_mesh()).min(1)  # each face's smallest angle
-    assert a.min() >= 29.5
-    assert np.count_nonzero(a < 30.0) <= 5
-    topo = ms.get_topological_measures()
-    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+    for percent in (1.0, 2.0):
+        ms = _benchmark_cluster(50)
+        r = pipeline_union.union(ms, remesh=True, target_percent=percent, relax_wedges=True)["remesh"]
+        assert r["unmeshed_sides"] == 0 and r["wedge_tips"] == 0
+        assert r["jointly_moved"] > 0
+        a = angles(ms.current_mesh()).min(1)  # each face's smallest angle
+        assert a.min() >= 30.0, percent
+        topo = ms.get_topological_measures()
+        assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
 def test_two_hundred_sphere_cluster_regrid_refines_the_narrowest_necks():
