@@ -26,6 +26,8 @@ struct OutputMesh {
   /// points: the only points that patches share, so the front of one patch must not reuse such
   /// an edge made by another (it would get four faces). Kept up by the front only.
   std::unordered_set<std::uint64_t> shared_edges;
+  /// Line segments barred to a patch meshed again (remesh.cpp): part of shared_edges while set.
+  std::unordered_set<std::uint64_t> line_edges;
   /// Patches whose whole front is three sides: their triangle (sorted points) -> the patch.
   std::map<std::array<int, 3>, int> island_triangles;
 
@@ -54,7 +56,7 @@ struct OutputMesh {
   bool is_shared(int a, int b) const { return kind[a] != PointKind::Free && kind[b] != PointKind::Free; }
   /// shared_edges again from the faces (after faces were taken out).
   void rebuild_shared_edges() {
-    shared_edges.clear();
+    shared_edges = line_edges;
     for (const auto& t : faces)
       for (int z = 0; z < 3; ++z)
         if (is_shared(t[z], t[(z + 1) % 3])) shared_edges.insert(edge_key(t[z], t[(z + 1) % 3]));

@@ -1,6 +1,8 @@
 #include "remesh/patch_retry.h"
 
 #include <algorithm>
+#include <map>
+#include <set>
 #include <unordered_map>
 
 namespace mr::remesh {
@@ -45,6 +47,25 @@ std::vector<int> pinched_points(const OutputMesh& out, int patch) {
   }
   std::sort(pinched.begin(), pinched.end());  // link is a hash map: fix the order
   return pinched;
+}
+
+std::vector<int> patches_on_taken_lines(const OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges) {
+  std::unordered_map<std::uint64_t, std::vector<int>> faces_of;  // line segment -> its faces
+  for (const auto& e : feature_edges) faces_of.emplace(OutputMesh::edge_key(e[0], e[1]), std::vector<int>());
+  for (size_t f = 0; f < out.faces.size(); ++f)
+    for (int z = 0; z < 3; ++z) {
+      const auto it = faces_of.find(OutputMesh::edge_key(out.faces[f][z], out.faces[f][(z + 1) % 3]));
+      if (it != faces_of.end()) it->second.push_back(int(f));
+    }
+  std::set<int> patches;
+  for (const auto& [key, faces] : faces_of) {
+    if (faces.size() <= 2) continue;
+    std::map<int, int> per_patch;
+    for (int f : faces) per_patch[out.face_patch[size_t(f)]]++;
+    for (const auto& [patch, count] : per_patch)
+      if (count >= 2) patches.insert(patch);
+  }
+  return std::vector<int>(patches.begin(), patches.end());
 }
 
 void remove_patch_faces(OutputMesh& out, int patch) {

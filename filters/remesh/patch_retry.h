@@ -14,6 +14,10 @@ namespace mr::remesh {
 /// closes all round the point (elsewhere a patch may border a line or corner point twice).
 std::vector<int> pinched_points(const OutputMesh& out, int patch);
 
+/// Patches (ascending) with two faces on a segment of `feature_edges` that has more than two:
+/// an edge of their own that the line's patches also took.
+std::vector<int> patches_on_taken_lines(const OutputMesh& out, const std::vector<std::array<int, 2>>& feature_edges);
+
 /// Removes the faces of `patch` (its points stay, unused) and the shared edges only they used.
 void remove_patch_faces(OutputMesh& out, int patch);
 

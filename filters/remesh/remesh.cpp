@@ -346,14 +346,38 @@ std::unique_ptr<Fronts> mesh_fronts(const TriMesh& given, const Params& params, 
   result.merged_lines = ff.merged_lines;
   result.merged_corners = ff.merged_corners;
   long checks_left = run_check_budget(surface, size);
-  for (int patch = 0; patch < fr.patch_count; ++patch) {
-    if (ff.dropped_patch[patch]) continue;  // a sliver between twin lines or inside merged corners
-    progress(params, 15 + int(65.0 * patch / std::max(fr.patch_count, 1)), "Advancing the front");
+  std::vector<FrontResult> meshed(size_t(fr.patch_count));
+  auto mesh_one = [&](int patch) {
     FrontParams fp_patch;
     fp_patch.checks_left = &checks_left;
     fp_patch.thin_patch = ff.thin_patch[patch] != 0;
-    result.thin_patches += fp_patch.thin_patch ? 1 : 0;
-    const FrontResult r = mesh_patch(out, ff.patch_front[patch], patch, locator, size, fp_patch, params.target_length, result);
+    meshed[size_t(patch)] = mesh_patch(out, ff.patch_front[patch], patch, locator, size, fp_patch, params.target_length, result);
+  };
+  for (int patch = 0; patch < fr.patch_count; ++patch) {
+    if (ff.dropped_patch[patch]) continue;  // a sliver between twin lines or inside merged corners
+    progress(params, 15 + int(65.0 * patch / std::max(fr.patch_count, 1)), "Advancing the front");
+    mesh_one(patch);
+  }
+  // A patch meshed before the patches beside a line may have joined two points of that line by
+  // an edge of its own (two corners joined by a one-segment line, on its border too): the line's
+  // patches then gave that edge four faces (fuzz_union --models seed 281). Such a patch is
+  // meshed again, the line's segments barred to it.
+  const std::vector<int> again = patches_on_taken_lines(out, ff.feature_edges);
+  if (!again.empty()) {
+    for (const auto& e : ff.feature_edges) out.line_edges.insert(OutputMesh::edge_key(e[0], e[1]));
+    for (int patch : again) {
+      remove_patch_faces(out, patch);
+      out.rebuild_shared_edges();
+      mesh_one(patch);
+    }
+    out.line_edges.clear();
+    out.rebuild_shared_edges();
+    result.remeshed_off_lines = int(again.size());
+  }
+  for (int patch = 0; patch < fr.patch_count; ++patch) {
+    if (ff.dropped_patch[patch]) continue;
+    const FrontResult& r = meshed[size_t(patch)];
+    result.thin_patches += ff.thin_patch[patch] ? 1 : 0;
     result.unmeshed_sides += r.unmeshed_sides;
     // (A front stopped at its bound and then closed by the last resort is meshed: it was
     // counted as unmeshed, about 53k patches of a damaged bunny with no side open.)

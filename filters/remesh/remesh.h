@@ -74,6 +74,7 @@ struct Result {
   int non_manifold_points = 0;  ///< output points whose faces make more than one fan
   int retried_patches = 0;      ///< patch meshings repeated with smaller elements
   int local_repairs = 0;        ///< holes around open sides or pinched points meshed again, smaller
+  int remeshed_off_lines = 0;   ///< patches meshed again without an edge along a line of other patches
   int swaps = 0, smoothed = 0;  ///< post-pass moves
   int collapsed = 0;            ///< post-pass: free points removed at short edges
   int split = 0;                ///< post-pass: long edges split at their middle

@@ -207,6 +207,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"non_manifold_points", QVariant(r.non_manifold_points)},
       {"retried_patches", QVariant(r.retried_patches)},
       {"local_repairs", QVariant(r.local_repairs)},
+      {"remeshed_off_lines", QVariant(r.remeshed_off_lines)},
       {"merged_lines", QVariant(r.merged_lines)},
       {"merged_corners", QVariant(r.merged_corners)},
       {"thin_patches", QVariant(r.thin_patches)},

@@ -1522,6 +1522,27 @@ def test_bug_a_compensating_move_sees_the_faces_a_flip_just_made():
     assert near.get_geometric_measures()["mesh_volume"] == pytest.approx(ref, rel=budget)
 
 
+def test_bug_a_patch_meshed_first_took_an_edge_of_a_line_between_two_corners():
+    # Found by fuzzing (fuzz_union_regrid.py, seed 281 of 265-312, at 1%): cad/part.off united
+    # with its copies and regridded was not two-manifold, one edge with four faces. Two corners
+    # 0.005 apart are joined by a one-segment intersection line; a patch meshed before the two
+    # patches beside that line had both corners on its border and joined them by an edge of its
+    # own, and the line's patches then put their faces on it too. Such a patch is now meshed
+    # again with the line segments barred to it (remesh.cpp, `remeshed_off_lines`).
+    from meshregrid import pipeline_union
+    _, parts = _fuzz_union().models_case(281, _shared_models())
+    for relax in (False, True):
+        ms = pymeshlab.MeshSet()
+        for v, f in parts:
+            ms.add_mesh(pymeshlab.Mesh(v, f))
+        regrid = pipeline_union.union(ms, remesh=True, target_percent=1.0, relax_wedges=relax)["remesh"]
+        assert regrid["remeshed_off_lines"] > 0
+        assert regrid["unmeshed_sides"] == 0 and regrid["non_manifold_points"] == 0
+        topo = ms.get_topological_measures()
+        assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+        assert topo["non_two_manifold_edges"] == 0 and topo["non_two_manifold_vertices"] == 0
+
+
 def _quarter_turned(v, turns):
     """v turned about its centre by the given quarter turns about x, y, z (fuzz_union.py --models)."""
     a = np.array(turns) * np.pi / 2

@@ -1,5 +1,7 @@
-// Points whose faces make more than one fan are counted; fans open or closed are not.
+// Points whose faces make more than one fan are counted; fans open or closed are not. Patches
+// that put an edge of their own on another patch's line segment are found.
 #include "remesh/mesh_measures.h"
+#include "remesh/patch_retry.h"
 
 #include <gtest/gtest.h>
 
@@ -40,4 +42,26 @@ TEST(PinchedPoints, ClosedFansAndBordersAreManifold) {
   out.faces.push_back({1, 7, 5});
   out.face_patch.insert(out.face_patch.end(), {1, 1});
   EXPECT_EQ(count_pinched_points(out), 1);
+}
+
+TEST(PinchedPoints, PatchesThatTookALineSegmentOfOtherPatchesAreFound) {
+  // Corners a and b joined by a one-segment line between patches 1 and 2; patch 0, meshed
+  // first, had both on its border and put an edge of its own there: four faces on a-b.
+  OutputMesh out;
+  const int a = out.add_point(Point3(0, 0, 0), 0, PointKind::Corner);
+  const int b = out.add_point(Point3(1, 0, 0), 0, PointKind::Corner);
+  const int p = out.add_point(Point3(0.5, 1, 0), 0, PointKind::Free);
+  const int q = out.add_point(Point3(0.5, -1, 0), 0, PointKind::Free);
+  const int r = out.add_point(Point3(0.5, 0, 1), 0, PointKind::Free);
+  const int s = out.add_point(Point3(0.5, 0, -1), 0, PointKind::Free);
+  out.faces = {{a, b, p}, {b, a, q}, {b, a, r}, {a, b, s}};
+  out.face_patch = {0, 0, 1, 2};
+  const std::vector<std::array<int, 2>> line{{a, b}};
+  EXPECT_EQ(patches_on_taken_lines(out, line), std::vector<int>{0});
+  // Not a line segment: nothing to find (the pinched-point checks see such edges).
+  EXPECT_TRUE(patches_on_taken_lines(out, {}).empty());
+  // Two faces only, both of one patch (a line dangling inside it): nothing taken.
+  out.faces.resize(2);
+  out.face_patch.resize(2);
+  EXPECT_TRUE(patches_on_taken_lines(out, line).empty());
 }
