@@ -52,6 +52,14 @@ RECIPES = {
         ("create_cone", {"r0": 0.3, "r1": 0.3, "h": 3, "subdiv": 64}),
         ("compute_matrix_from_rotation", {"rotaxis": "X axis", "angle": 90}),
         ("compute_matrix_from_translation", {"axisx": 0.05})],
+    # The touching cases.
+    "two cubes sharing a face": [
+        ("create_cube", {"size": 1.0}), ("create_cube", {"size": 1.0}),
+        ("compute_matrix_from_translation", {"axisx": 1.0})],
+    "two cubes touching along an edge": [
+        ("create_cube", {"size": 1.0}), ("create_cube", {"size": 1.0}),
+        ("compute_matrix_from_translation", {"axisx": 1.0, "axisy": 1.0})],
+    "a sphere and an identical copy": [("create_sphere", {"subdiv": 4}), ("create_sphere", {"subdiv": 4})],
 }
 
 
