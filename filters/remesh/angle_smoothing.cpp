@@ -35,12 +35,7 @@ std::vector<int> raise_pinched_free_points(OutputMesh& out, const SurfaceLocator
     const int patch = out.face_patch[rings.item[rings.begin[v]]];
     const auto& first_face = out.faces[rings.item[rings.begin[v]]];
     const int neighbour = first_face[0] != v ? first_face[0] : first_face[1];  // fixes the frame's e1
-    double edge = 0;
-    int count = 0;
-    for (int k = rings.begin[v]; k < rings.begin[v + 1]; ++k)
-      for (int x : out.faces[rings.item[k]])
-        if (x != v) { edge += (out.points[x] - out.points[v]).Norm(); ++count; }
-    edge /= count;
+    const double edge = mean_ring_edge(out.points, out.faces, rings, v);
     const Point3 start = out.points[v];
     Point3 at = start;
     int host = out.host[v];

@@ -2,6 +2,7 @@
 
 #include "remesh/face_rings.h"
 #include "remesh/line_arcs.h"
+#include "remesh/star_shape.h"
 #include "remesh/triangle_geometry.h"
 #include "remesh/wedge_tips.h"
 
@@ -128,7 +129,7 @@ public:
           if (x[k] != was && place(k / 2, x, factor * step[k])) {
             const FaceScore trial = rescore(movers[k / 2].v);
             if (trial.penalty < now.penalty - 1e-15 && trial.off >= start.off - kAngleTie &&
-                trial.tips >= start.tips - kAngleTie && !folded()) {
+                trial.tips >= start.tips - kAngleTie && !folded_around(mv.v)) {
               now = trial;
               better = true;
               break;
@@ -180,12 +181,14 @@ private:
     return c;
   }
 
+  /// Index in faces_ of face f (one of the neighbourhood's).
+  size_t slot_of(int f) const { return size_t(std::lower_bound(faces_.begin(), faces_.end(), f) - faces_.begin()); }
+
   /// Scores again the faces around v; returns the neighbourhood's total.
   FaceScore rescore(int v) {
     for (int k = rings_.begin[v]; k < rings_.begin[v + 1]; ++k) {
       const int f = rings_.item[k];
-      const size_t n = size_t(std::lower_bound(faces_.begin(), faces_.end(), f) - faces_.begin());
-      score_[n] = score_face(out_.points, out_.faces[f], keys_, goal_ + kAim);
+      score_[slot_of(f)] = score_face(out_.points, out_.faces[f], keys_, goal_ + kAim);
     }
     return total();
   }
@@ -200,10 +203,12 @@ private:
     return t;
   }
 
-  bool folded() const {
-    for (size_t n = 0; n < faces_.size(); ++n) {
-      const auto& f = out_.faces[faces_[n]];
-      if (unit_normal(out_.points[f[0]], out_.points[f[1]], out_.points[f[2]]) * normal_[n] < kMinNormalAgreement)
+  /// A face around v (the only point just moved) turned too far from where the search began.
+  bool folded_around(int v) const {
+    for (int k = rings_.begin[v]; k < rings_.begin[v + 1]; ++k) {
+      const auto& f = out_.faces[rings_.item[k]];
+      if (unit_normal(out_.points[f[0]], out_.points[f[1]], out_.points[f[2]]) * normal_[slot_of(rings_.item[k])] <
+          kMinNormalAgreement)
         return true;
     }
     return false;
@@ -223,15 +228,6 @@ private:
   std::vector<Point3> normal_;
   std::vector<FaceScore> score_;
 };
-
-double mean_ring_edge(const OutputMesh& out, const FaceRings& rings, int v) {
-  double edge = 0;
-  int count = 0;
-  for (int k = rings.begin[v]; k < rings.begin[v + 1]; ++k)
-    for (int x : out.faces[rings.item[k]])
-      if (x != v) { edge += (out.points[x] - out.points[v]).Norm(); ++count; }
-  return count > 0 ? edge / count : 0.0;
-}
 
 }  // namespace
 
@@ -273,7 +269,7 @@ std::vector<int> polish_jointly(OutputMesh& out, std::vector<LinePath>& paths,
         const int neighbour = first[0] != v ? first[0] : first[1];
         m.frame = TangentFrame(out.points[v], out.points[neighbour] - out.points[v], s.face_normal[out.host[v]]);
         m.patch = out.face_patch[rings.item[rings.begin[v]]];
-        m.reach = kReach * mean_ring_edge(out, rings, v);
+        m.reach = kReach * mean_ring_edge(out.points, out.faces, rings, v);
         if (!(m.reach > 0)) return;
       } else {
         return;

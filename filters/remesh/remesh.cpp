@@ -366,8 +366,7 @@ std::unique_ptr<Fronts> mesh_fronts(const TriMesh& given, const Params& params, 
   if (!again.empty()) {
     for (const auto& e : ff.feature_edges) out.line_edges.insert(OutputMesh::edge_key(e[0], e[1]));
     for (int patch : again) {
-      remove_patch_faces(out, patch);
-      out.rebuild_shared_edges();
+      remove_patch_faces(out, patch);  // (its shared edges rebuilt, the line segments among them)
       mesh_one(patch);
     }
     out.line_edges.clear();

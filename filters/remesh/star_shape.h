@@ -14,6 +14,18 @@
 
 namespace mr::remesh {
 
+/// Mean length of the edges from point v to the other corners of its faces (each edge once per
+/// face it bounds); 0 when it has none. The reach of a point's search for a better place.
+inline double mean_ring_edge(const std::vector<Point3>& points, const std::vector<std::array<int, 3>>& faces,
+                             const FaceRings& rings, int v) {
+  double edge = 0;
+  int count = 0;
+  for (int k = rings.begin[v]; k < rings.begin[v + 1]; ++k)
+    for (int x : faces[rings.item[k]])
+      if (x != v) { edge += (points[x] - points[v]).Norm(); ++count; }
+  return count > 0 ? edge / count : 0.0;
+}
+
 /// Smallest angle (radians) of the faces around point v; 1e9 when it has none.
 inline double star_min_angle(const std::vector<Point3>& points, const std::vector<std::array<int, 3>>& faces,
                              const FaceRings& rings, int v) {
