@@ -232,7 +232,15 @@ int open_or_pinched(const OutputMesh& out, int patch, const FrontResult& r) {
 FrontResult mesh_patch(OutputMesh& out, const std::vector<FrontSide>& front, int patch, const SurfaceLocator& locator,
                        const SizeField& size, const FrontParams& fp, double target, Result& result) {
   FrontResult r = advance_front(out, front, patch, locator, size, fp);
-  if (fp.thin_patch) return r;
+  if (fp.thin_patch) {
+    if (r.unmeshed_sides == 0) return r;
+    // The one layer did not close (an ear it needed was refused): the strip is meshed as any
+    // patch, repairs and retries included (fuzz_union --models seed 492: 77 sides left open).
+    remove_patch_faces(out, patch);
+    FrontParams any = fp;
+    any.thin_patch = false;
+    return mesh_patch(out, front, patch, locator, size, any, target, result);
+  }
   r = repair_locally(out, front, patch, locator, size, fp, target, r, result);
   int open = open_or_pinched(out, patch, r);
   for (double scale = kRetryScale; open > 0 && scale >= kMinRetryScale; scale *= kRetryScale) {

@@ -1543,6 +1543,24 @@ def test_bug_a_patch_meshed_first_took_an_edge_of_a_line_between_two_corners():
         assert topo["non_two_manifold_edges"] == 0 and topo["non_two_manifold_vertices"] == 0
 
 
+def test_bug_a_thin_strip_whose_one_layer_did_not_close():
+    # Found by fuzzing (fuzz_union_regrid.py, seed 492 of 446-500, at 1%): cad/joint.off united
+    # with two copies; the regrid of the exact union left 77 sides open (and the stepped union's
+    # regrid was not two-manifold, so the pipeline had no closed regrid to keep). A strip narrower
+    # than a tenth of the size gets one layer of faces by ear clipping, and there an ear it
+    # needed was refused. Such a strip is now meshed as any patch (remesh.cpp, mesh_patch).
+    from meshregrid import pipeline_union
+    _, parts = _fuzz_union().models_case(492, _shared_models())
+    ms = pymeshlab.MeshSet()
+    for v, f in parts:
+        ms.add_mesh(pymeshlab.Mesh(v, f))
+    regrid = pipeline_union.union(ms, remesh=True, target_percent=1.0, sliver_angle=0.0)["remesh"]
+    assert regrid["thin_patches"] >= 1
+    assert regrid["unmeshed_sides"] == 0 and regrid["unmeshed_patches"] == 0 and regrid["non_manifold_points"] == 0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
+
 def _quarter_turned(v, turns):
     """v turned about its centre by the given quarter turns about x, y, z (fuzz_union.py --models)."""
     a = np.array(turns) * np.pi / 2
