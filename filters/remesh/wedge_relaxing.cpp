@@ -75,10 +75,10 @@ private:
   // or a corner (the end of that path and of others).
   bool beside(int c, int p, int not_path, Place& where) const {
     const std::vector<Place>& held = places_[size_t(p)];
-    const bool corner = out_.kind[size_t(p)] == PointKind::Corner;
-    if (!corner && held.size() != 1) return false;  // (shared points stay)
+    // A junction is merged as a corner would be (neither slides).
+    const bool fixed = out_.kind[size_t(p)] == PointKind::Corner || junction(p);
     for (const auto& [a, i] : held) {
-      if (a == not_path || !(corner || paths_[size_t(a)].slidable[size_t(i)])) continue;
+      if (a == not_path || !(fixed || paths_[size_t(a)].slidable[size_t(i)])) continue;
       const auto& pts = paths_[size_t(a)].points;
       if ((i > 0 && pts[size_t(i) - 1] == c) || (i + 1 < int(pts.size()) && pts[size_t(i) + 1] == c)) {
         where = {a, i};
@@ -87,6 +87,9 @@ private:
     }
     return false;
   }
+
+  // p is no corner but several paths hold it (lines part there).
+  bool junction(int p) const { return out_.kind[size_t(p)] != PointKind::Corner && places_[size_t(p)].size() > 1; }
 
   // Some path holds both p and q: merged, it would run from the point back to itself.
   bool on_one_path(int p, int q) const {
@@ -129,9 +132,12 @@ private:
     std::vector<std::pair<Point3, int>> places;
     const Point3 half = (out_.points[p1] + out_.points[p2]) * 0.5;
     const Projection pr = locator_.locate(half, out_.face_patch[size_t(k)], Point3(0, 0, 0), out_.host[p1], width);
-    if (pr.face >= 0) places.push_back({pr.point, pr.face});
-    places.push_back({out_.points[p1], out_.host[p1]});
-    places.push_back({out_.points[p2], out_.host[p2]});
+    // A junction (a point several lines run through) stays where it is: moved, it would move
+    // every line through it.
+    const bool fixed1 = junction(p1), fixed2 = junction(p2);
+    if (pr.face >= 0 && !fixed1 && !fixed2) places.push_back({pr.point, pr.face});
+    if (!fixed2) places.push_back({out_.points[p1], out_.host[p1]});
+    if (!fixed1) places.push_back({out_.points[p2], out_.host[p2]});
     // The first that raises the smallest angle: halfway moves each line least.
     int chosen = -1;
     for (int n = 0; n < int(places.size()) && chosen < 0; ++n) {
@@ -156,7 +162,7 @@ private:
       path.slidable[size_t(q.second)] = 0;
       places_[size_t(p1)].push_back(q);
     }
-    paths_[size_t(a.first)].slidable[size_t(a.second)] = 0;
+    for (const Place& q : places_[size_t(p1)]) paths_[size_t(q.first)].slidable[size_t(q.second)] = 0;
     if (out_.kind[size_t(p2)] == PointKind::Corner) out_.kind[size_t(p1)] = PointKind::Corner;
     places_[size_t(p2)].clear();
     merged_into_[p2] = p1;

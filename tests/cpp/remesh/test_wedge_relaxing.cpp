@@ -2,9 +2,10 @@
 // quarter away; one face fills the wedge between them (its angle at C is the wedge's). Merging P1
 // and P2 halfway between them makes the lines share their first segment: that face goes and the
 // next one between the lines sees them at about twice the angle. The merge must not happen where
-// the first points are too far apart for the size, where one is shared with a third line, or
-// where the wedge is 30 degrees or more. First points that are corners (the lines from the tip
-// are one segment long, others go on from there) merge too, and take every line along.
+// the first points are too far apart for the size, where one no longer slides, or where the
+// wedge is 30 degrees or more. First points that are corners (the lines from the tip are one
+// segment long, others go on from there) merge too, and take every line along. A first point
+// that two lines run through (a junction) merges too, and stays where it is.
 #include "remesh/wedge_relaxing.h"
 #include "remesh/triangle_geometry.h"
 #include "output_lattice.h"
@@ -143,4 +144,33 @@ TEST(RemeshWedgeRelaxing, CornersBesideANarrowWedgeMergeAndEveryLineThroughThemF
   EXPECT_EQ(w.paths[2].points, (std::vector<int>{w.c, w.p1}));  // the tip's two lines are one now
   EXPECT_EQ(w.paths[3].points, (std::vector<int>{w.p1, w.b2}));
   EXPECT_TRUE(features_after_merge(w));
+}
+
+TEST(RemeshWedgeRelaxing, AJunctionBesideANarrowWedgeTakesTheOtherPointAndStaysWhereItIs) {
+  // A third line runs from corner D through P1 to the tip, on line A's first segment (lines that
+  // share a stretch, as where tiny lines merged at a sphere cluster's triple points).
+  test::UnitSquare sq(0.5);
+  Wedge w(20.0);
+  w.out.kind[size_t(w.d)] = PointKind::Corner;
+  w.paths.push_back(w.path({w.d, w.p1, w.c}));
+  w.features.push_back({w.d, w.p1});
+  const Point3 junction = w.out.points[w.p1];
+  const double before = test::worst_angle(w.out);
+  ASSERT_EQ(relax_wedge_tips(w.out, w.paths, w.features, sq.locator, sq.size), std::vector<int>{w.p1});
+  EXPECT_EQ(w.out.points[w.p1], junction);  // moved, it would move line D too
+  EXPECT_EQ(w.out.faces.size(), 5u);
+  EXPECT_TRUE(all_face_up(w.out));
+  EXPECT_GT(test::worst_angle(w.out), before + 5 * kDeg);
+  EXPECT_EQ(w.paths[0].points, (std::vector<int>{w.c, w.p1, w.a2}));
+  EXPECT_EQ(w.paths[1].points, (std::vector<int>{w.c, w.p1, w.b2}));
+  EXPECT_EQ(w.paths[2].points, (std::vector<int>{w.d, w.p1, w.c}));
+  for (const auto& path : w.paths) EXPECT_FALSE(path.slidable[1]);
+  // Where both first points are junctions neither can give way: nothing merges.
+  Wedge both(20.0);
+  for (int p : {both.p1, both.p2}) {
+    both.out.kind[size_t(both.d)] = PointKind::Corner;
+    both.paths.push_back(both.path({both.d, p, both.c}));
+  }
+  EXPECT_TRUE(relax_wedge_tips(both.out, both.paths, both.features, sq.locator, sq.size).empty());
+  EXPECT_EQ(both.out.faces.size(), 7u);
 }
