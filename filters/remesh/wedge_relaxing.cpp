@@ -88,7 +88,8 @@ private:
     return false;
   }
 
-  // p is no corner but several paths hold it (lines part there).
+  // p is no corner but several paths hold it (lines that share a stretch part there, as an
+  // earlier merge leaves them).
   bool junction(int p) const { return out_.kind[size_t(p)] != PointKind::Corner && places_[size_t(p)].size() > 1; }
 
   // Some path holds both p and q: merged, it would run from the point back to itself.
