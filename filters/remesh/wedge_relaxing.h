@@ -21,10 +21,11 @@ namespace mr::remesh {
 /// at the tip (a wedge under 30 degrees is at most 0.52 x the size wide one element from its tip).
 constexpr double kRelaxWidth = 0.6;
 
-/// Merges the two points beside each wedge tip of `paths` (each slidable or a corner, joined by a
-/// face edge that is no feature edge, at most kRelaxWidth x the size apart) into one point that
-/// every line through them shares (a corner if either was one): at the surface point halfway
-/// between them, else at one of them, where that raises the smallest angle of their faces, the
+/// Merges the two points beside each wedge tip of `paths` (each slidable, a corner, or a junction
+/// that several paths hold, joined by a face edge that is no feature edge, at most kRelaxWidth x
+/// the size apart) into one point that every line through them shares (a corner if either was
+/// one): at the surface point halfway between them, else at one of them (a junction's own place
+/// only), where that raises the smallest angle of their faces, the
 /// link condition holds and no face turns by more than acos(0.7). The merged point no longer
 /// slides; a wedge still under 30 degrees beyond it is relaxed again in a later sweep. `paths`
 /// and `feature_edges` follow; the removed points stay in `out.points`, used by no face. Returns
