@@ -223,49 +223,63 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
   }
   // Line points go or slide last, where swaps and smoothing left bad faces around them; the
   // free points around a changed one are smoothed again.
-  for (int it = 0; it < iterations; ++it) {
-    std::vector<int> changed;
-    if (relax_wedges) changed = relax_wedge_tips(out, line_paths, feature_edges, locator, size);
-    r.relaxed_wedges += int(changed.size());
-    const std::vector<int> removed = remove_line_points(out, line_paths, feature_edges, locator, size, kRemoveBelow);
-    r.line_points_removed += int(removed.size());
-    changed.insert(changed.end(), removed.begin(), removed.end());
-    const std::vector<int> slid = slide_line_points(out, line_paths, feature_edges, kSlideBelow, kSlideGoal);
-    r.moves += int(slid.size());
-    changed.insert(changed.end(), slid.begin(), slid.end());
-    if (changed.empty()) break;
-    r.moves += smooth_pass(out, locator, movable_around(out, changed, movable));
-  }
-  // Then, where neither a slide of its own nor one in a pair lifts a line point's faces
-  // between the bounds to the goal, the largest gain short of it (after the sweeps above, so
-  // that such a slide does not stand in the way of one reaching the goal).
-  for (int it = 0; it < iterations; ++it) {
-    const std::vector<int> slid = slide_line_points(out, line_paths, feature_edges, kSlideBelow, kSlideGoal, true);
-    r.moves += int(slid.size());
-    if (slid.empty()) break;
-    r.moves += smooth_pass(out, locator, movable_around(out, slid, movable));
-  }
-  // Last, free points whose faces stay under the goal (pinched between feature points, where
-  // the ring's centre does not help) search nearby for better places; after the first sweep only
-  // points near one that moved (the others' faces are as the last search left them).
-  std::vector<char> searched = movable;
-  for (int it = 0; it < iterations; ++it) {
-    const std::vector<int> raised = raise_pinched_free_points(out, locator, searched, kSlideGoal);
-    r.moves += int(raised.size());
-    if (raised.empty()) break;
-    searched = movable_around(out, raised, movable);
-  }
-  // Where faces still stay under the goal, every single move above made a neighbour worse: the
-  // points around them search their places together (joint_polish.h).
-  // After the first sweep only faces near a point that moved (the others' searches would find
-  // what they found).
-  std::vector<char> near(out.points.size(), 1);
-  for (int it = 0; it < iterations; ++it) {
-    const std::vector<int> polished =
-        polish_jointly(out, line_paths, feature_edges, locator, movable, kSlideGoal, near);
-    r.jointly_moved += int(polished.size());
-    if (polished.empty()) break;
-    near = region_around(out, polished);
+  auto line_passes = [&] {
+    for (int it = 0; it < iterations; ++it) {
+      std::vector<int> changed;
+      if (relax_wedges) changed = relax_wedge_tips(out, line_paths, feature_edges, locator, size);
+      r.relaxed_wedges += int(changed.size());
+      const std::vector<int> removed = remove_line_points(out, line_paths, feature_edges, locator, size, kRemoveBelow);
+      r.line_points_removed += int(removed.size());
+      changed.insert(changed.end(), removed.begin(), removed.end());
+      const std::vector<int> slid = slide_line_points(out, line_paths, feature_edges, kSlideBelow, kSlideGoal);
+      r.moves += int(slid.size());
+      changed.insert(changed.end(), slid.begin(), slid.end());
+      if (changed.empty()) break;
+      r.moves += smooth_pass(out, locator, movable_around(out, changed, movable));
+    }
+    // Then, where neither a slide of its own nor one in a pair lifts a line point's faces
+    // between the bounds to the goal, the largest gain short of it (after the sweeps above, so
+    // that such a slide does not stand in the way of one reaching the goal).
+    for (int it = 0; it < iterations; ++it) {
+      const std::vector<int> slid = slide_line_points(out, line_paths, feature_edges, kSlideBelow, kSlideGoal, true);
+      r.moves += int(slid.size());
+      if (slid.empty()) break;
+      r.moves += smooth_pass(out, locator, movable_around(out, slid, movable));
+    }
+    // Last, free points whose faces stay under the goal (pinched between feature points, where
+    // the ring's centre does not help) search nearby for better places; after the first sweep only
+    // points near one that moved (the others' faces are as the last search left them).
+    std::vector<char> searched = movable;
+    for (int it = 0; it < iterations; ++it) {
+      const std::vector<int> raised = raise_pinched_free_points(out, locator, searched, kSlideGoal);
+      r.moves += int(raised.size());
+      if (raised.empty()) break;
+      searched = movable_around(out, raised, movable);
+    }
+    // Where faces still stay under the goal, every single move above made a neighbour worse: the
+    // points around them search their places together (joint_polish.h).
+    // After the first sweep only faces near a point that moved (the others' searches would find
+    // what they found).
+    std::vector<char> near(out.points.size(), 1);
+    for (int it = 0; it < iterations; ++it) {
+      const std::vector<int> polished =
+          polish_jointly(out, line_paths, feature_edges, locator, movable, kSlideGoal, near);
+      r.jointly_moved += int(polished.size());
+      if (polished.empty()) break;
+      near = region_around(out, polished);
+    }
+  };
+  line_passes();
+  // With wedges relaxed, lines that pass close without meeting merge or snap where faces are
+  // still under the goal: after the passes above, which often reach it there without them (a
+  // merge takes points that a later slide or wedge merge would have used better).
+  if (relax_wedges) {
+    const std::vector<int> closed = close_line_gaps(out, line_paths, feature_edges, locator, size, kSlideGoal);
+    r.closed_line_gaps = int(closed.size());
+    if (!closed.empty()) {
+      r.moves += smooth_pass(out, locator, movable_around(out, closed, movable));
+      line_passes();
+    }
   }
   return r;
 }

@@ -26,6 +26,7 @@ struct ImprovementResult {
   int split = 0;      ///< long edges split at their middle
   int line_points_removed = 0;  ///< line points whose two segments became one (line_point_removal.h)
   int relaxed_wedges = 0;       ///< wedge tips whose lines now share their first segment (wedge_relaxing.h)
+  int closed_line_gaps = 0;     ///< points where lines that passed close now meet (wedge_relaxing.h)
   int jointly_moved = 0;        ///< points moved by the joint search around faces under the goal (joint_polish.h)
 };
 

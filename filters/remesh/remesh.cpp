@@ -415,6 +415,7 @@ Result finish(Fronts& run, TriMesh& output) {
       improve_mesh(out, feature_edges, locator, size, params.improvement_iterations, ff.line_paths, {}, params.relax_wedges);
   result.line_points_removed = ir.line_points_removed;
   result.relaxed_wedges = ir.relaxed_wedges;
+  result.closed_line_gaps = ir.closed_line_gaps;
   result.jointly_moved = ir.jointly_moved;
   result.feature_edges = int(feature_edges.size());
   result.swaps = ir.swaps;

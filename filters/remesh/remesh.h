@@ -80,6 +80,7 @@ struct Result {
   int split = 0;                ///< post-pass: long edges split at their middle
   int line_points_removed = 0;  ///< post-pass: line points whose two segments became one
   int relaxed_wedges = 0;       ///< post-pass: wedge tips whose two lines now share their first segment
+  int closed_line_gaps = 0;     ///< post-pass: points where two lines that passed close now meet
   int jointly_moved = 0;        ///< post-pass: points moved together around faces under 30 degrees
   int snapped = 0;              ///< free points moved onto input vertices the output cut off
   int surface_swaps = 0;        ///< edges swapped to follow the input across creases not kept

@@ -21,6 +21,15 @@ namespace mr::remesh {
 /// at the tip (a wedge under 30 degrees is at most 0.52 x the size wide one element from its tip).
 constexpr double kRelaxWidth = 0.6;
 
+/// Points of two lines that do not meet there may merge where they are at most this far apart,
+/// x the smaller size at them: in a strip that narrow, between line segments of the size, no face
+/// reaches 27 degrees.
+constexpr double kCloseGap = 0.25;
+
+/// A point snaps onto another line's segment only opposite its middle part: this fraction of the
+/// segment at either end is left to the merge of two points.
+constexpr double kSnapFrom = 0.15;
+
 /// Merges the two points beside each wedge tip of `paths` (each slidable, a corner, or a junction
 /// that several paths hold, joined by a face edge that is no feature edge, at most kRelaxWidth x
 /// the size apart) into one point that every line through them shares (a corner if either was
@@ -33,5 +42,18 @@ constexpr double kRelaxWidth = 0.6;
 std::vector<int> relax_wedge_tips(OutputMesh& out, std::vector<LinePath>& paths,
                                   std::vector<std::array<int, 2>>& feature_edges, const SurfaceLocator& locator,
                                   const SizeField& size);
+
+/// Where two lines pass closer than kCloseGap x the size without meeting (intersection circles
+/// of a sphere cluster 0.0003 apart), the strip between them holds only slivers. Two points of
+/// the lines joined by a face edge merge as beside a wedge tip; a point facing the middle part
+/// of the other line's segment (a cap) joins that line instead: the segment flips to the edge
+/// from it to the point across, and the line runs through it (where it is, or halfway to the
+/// segment or on it, the first of these that raises the smallest angle). Either only where a
+/// face around is under `below_rad` and the change raises the smallest angle there, the link
+/// condition holds and no face turns by more than acos(0.7). Once the lines meet, the wedges on
+/// either side are relax_wedge_tips' to take. Returns the points merged into or snapped.
+std::vector<int> close_line_gaps(OutputMesh& out, std::vector<LinePath>& paths,
+                                 std::vector<std::array<int, 2>>& feature_edges, const SurfaceLocator& locator,
+                                 const SizeField& size, double below_rad);
 
 }  // namespace mr::remesh

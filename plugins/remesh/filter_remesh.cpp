@@ -82,7 +82,9 @@ RichParameterList Remeshing::initParameterList(const QAction*, const MeshDocumen
                          "segment there (their first points merge, halfway between them on the surface or else at one "
                          "of them, when they are at most 0.6 x the size apart and the merge raises the smallest "
                          "angle): near the tip each line moves by at most the points' distance, half of it where "
-                         "they meet halfway."));
+                         "they meet halfway. Lines that pass closer than 0.25 x the size without meeting, where a "
+                         "face between them stays under 30 degrees, are made to meet there the same way (two "
+                         "points merge, or a point joins the other line's segment it faces)."));
   list.addParam(RichBool("use_size_source", false, "Use a size source layer",
                          "Limit the size near the vertices of another layer, each vertex carrying the wanted size "
                          "in its vertex quality."));
@@ -201,6 +203,7 @@ std::map<std::string, QVariant> Remeshing::applyFilter(const QAction*, const Ric
       {"flat_pockets_removed", QVariant(r.flat_pockets_removed)},
       {"line_points_removed", QVariant(r.line_points_removed)},
       {"relaxed_wedges", QVariant(r.relaxed_wedges)},
+      {"closed_line_gaps", QVariant(r.closed_line_gaps)},
       {"jointly_moved", QVariant(r.jointly_moved)},
       {"kept_folded_slivers", QVariant(r.kept_folded_slivers)},
       {"kept_crumples", QVariant(r.kept_crumples)},

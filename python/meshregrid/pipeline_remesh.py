@@ -17,7 +17,8 @@ def remesh(ms: pymeshlab.MeshSet, target_length=None, target_percent: float = 1.
     every ridge and corner) drops short ridge lines with an open end and short closed ridge
     loops in both steps, so they agree on the features. ``max_surface_error`` (absolute,
     0 = off) turns on curvature adaptation. ``relax_wedges`` lets two lines that leave a point at
-    under 30 degrees share their first segment (the filter's parameter). Returns the filter's dictionary plus ``features``, the feature filter's
+    under 30 degrees share their first segment, and lines that pass closer than a quarter of the
+    size meet there (the filter's parameter). Returns the filter's dictionary plus ``features``, the feature filter's
     dictionary on the input (the input keeps its geometry; the feature filter only adds
     selections, colours and the ``patch_id`` attribute).
     """

@@ -59,7 +59,9 @@ def union(ms: pymeshlab.MeshSet, bodies: str = "layers", sliver_angle: float = 1
     degrees (a line running into a crease at a shallow angle, a cluster's triple points), they
     may share their first segment (the remesh filter's parameter): the wedge's face goes, and near
     the tip each line moves by at most the distance of its first point from the other line's
-    (under 0.6 x the size; half of it where they meet halfway, the usual case).
+    (under 0.6 x the size; half of it where they meet halfway, the usual case). Lines that pass
+    closer than a quarter of the size without meeting (intersection circles that nearly touch)
+    are made to meet there, where a face between them stays under 30 degrees.
     """
     if bodies not in BODIES:
         raise ValueError(f"bodies must be one of {sorted(BODIES)}, got {bodies!r}")

@@ -816,6 +816,19 @@ def test_pipeline_relax_wedges_merges_beside_a_junction_of_lines():
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 
 
+def test_pipeline_relax_wedges_makes_lines_that_pass_close_meet():
+    # scripts/fuzz_union.py --models, seed 34 (cad/fandisk.obj with copies) at 1%: two feature
+    # lines pass closer than a quarter of the size without meeting, and the faces between them
+    # stayed at 5.78 degrees. The lines now meet there (close_line_gaps, stop 61): measured 20.00.
+    from meshregrid import pipeline_union
+    ms = _models_case_layers(34)
+    r = pipeline_union.union(ms, remesh=True, target_percent=1.0, relax_wedges=True)["remesh"]
+    assert r["closed_line_gaps"] > 0 and r["unmeshed_sides"] == 0
+    assert r["min_angle"] >= 15.0 and angles(ms.current_mesh()).min() >= 15.0
+    topo = ms.get_topological_measures()
+    assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
+
+
 def test_pipeline_breaks_a_tie_at_a_shared_wedge_by_the_angles_off_the_wedges():
     # fuzz_union --models seed 32 at 1%: both regrids keep the same 7.0144250828-degree wedge;
     # the exact union's won by 1e-14 of a degree with a face of 7.72 degrees off the wedges,
