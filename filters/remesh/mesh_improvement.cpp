@@ -273,13 +273,12 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
   // With wedges relaxed, lines that pass close without meeting merge or snap where faces are
   // still under the goal: after the passes above, which often reach it there without them (a
   // merge takes points that a later slide or wedge merge would have used better).
-  if (relax_wedges) {
+  for (int round = 0; relax_wedges && round < 3; ++round) {
     const std::vector<int> closed = close_line_gaps(out, line_paths, feature_edges, locator, size, kSlideGoal);
-    r.closed_line_gaps = int(closed.size());
-    if (!closed.empty()) {
-      r.moves += smooth_pass(out, locator, movable_around(out, closed, movable));
-      line_passes();
-    }
+    r.closed_line_gaps += int(closed.size());
+    if (closed.empty()) break;
+    r.moves += smooth_pass(out, locator, movable_around(out, closed, movable));
+    line_passes();
   }
   return r;
 }

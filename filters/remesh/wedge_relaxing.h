@@ -5,6 +5,8 @@
 // the lines sees them at about twice the angle (2 atan(2 tan(a/2)): 26 -> 50, 19.7 -> 38 degrees).
 // Each merge moves a line by at most the two points' distance (under 0.6 x the size), half of it
 // where they meet halfway, the usual case: below what the elements could show anyway.
+// Lines that pass close without meeting are the same problem without a tip, and the same merge
+// (or a point joining the other line's segment) makes them meet: close_line_gaps.
 #pragma once
 
 #include "remesh/line_sliding.h"
