@@ -272,7 +272,9 @@ ImprovementResult improve_mesh(OutputMesh& out, std::vector<std::array<int, 2>>&
   line_passes();
   // With wedges relaxed, lines that pass close without meeting merge or snap where faces are
   // still under the goal: after the passes above, which often reach it there without them (a
-  // merge takes points that a later slide or wedge merge would have used better).
+  // merge takes points that a later slide or wedge merge would have used better). Up to three
+  // rounds: a meeting and the passes after it can leave the next gap under the goal (fuzz_union's
+  // models at 1%: 7 regrids better than with one round, none worse).
   for (int round = 0; relax_wedges && round < 3; ++round) {
     const std::vector<int> closed = close_line_gaps(out, line_paths, feature_edges, locator, size, kSlideGoal);
     r.closed_line_gaps += int(closed.size());
