@@ -200,12 +200,8 @@ private:
     out_.faces.push_back({v, a, d});
     out_.face_patch.push_back(out_.face_patch[f]);
     out_.face_patch.push_back(out_.face_patch[g]);
-    auto drop = [&](int u, int k) {
-      auto& star = stars_.of(u);
-      star.erase(std::remove(star.begin(), star.end(), k), star.end());
-    };
-    drop(b, f);
-    drop(a, g);
+    stars_.drop_face(b, f);
+    stars_.drop_face(a, g);
     stars_.of(b).push_back(f2);
     stars_.of(c).push_back(f2);
     stars_.of(a).push_back(g2);

@@ -4,6 +4,7 @@
 
 #include "remesh/output_mesh.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace mr::remesh {
@@ -16,6 +17,11 @@ public:
   std::vector<int>& of(int v) { return star_[size_t(v)]; }
   /// Room for a point added after construction.
   void add_point() { star_.emplace_back(); }
+  /// Face f no longer has v as a corner (a split or a flip gave it another).
+  void drop_face(int v, int f) {
+    auto& star = star_[size_t(v)];
+    star.erase(std::remove(star.begin(), star.end(), f), star.end());
+  }
 
   /// v's neighbours, sorted.
   std::vector<int> neighbours(const OutputMesh& out, int v) const;

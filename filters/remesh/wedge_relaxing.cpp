@@ -269,12 +269,8 @@ private:
     out_.faces[size_t(k)] = nk;
     out_.faces[size_t(g)] = ng;
     out_.face_patch[size_t(k)] = out_.face_patch[size_t(g)];
-    auto drop = [&](int v, int f) {
-      auto& st = stars_.of(v);
-      st.erase(std::remove(st.begin(), st.end(), f), st.end());
-    };
-    drop(a, g);
-    drop(b, k);
+    stars_.drop_face(a, g);
+    stars_.drop_face(b, k);
     stars_.of(x).push_back(k);
     stars_.of(q).push_back(g);
   }
