@@ -24,7 +24,8 @@ def add_arguments(p):
     p.add_argument("--recovery", choices=["linear", "closest", "quadratic", "cubic"], default="linear",
                    help="surface recovery of the new points (default linear)")
     p.add_argument("--relax-wedges", action="store_true",
-                   help="lines leaving a point at under 30 degrees may share their first segment")
+                   help="lines leaving a point at under 30 degrees may share their first segment, "
+                        "and lines passing closer than 0.25 x the size meet there")
     p.add_argument("--no-progress", action="store_true", help="do not print the filter's progress")
 
 

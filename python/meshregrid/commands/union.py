@@ -26,7 +26,8 @@ def add_arguments(p):
                       help="remesh: element size in percent of the bounding-box diagonal (default 1)")
     p.add_argument("--ridge-angle", type=float, default=30.0, help="remesh: ridge angle in degrees (default 30)")
     p.add_argument("--relax-wedges", action="store_true",
-                   help="remesh: lines leaving a point at under 30 degrees may share their first segment")
+                   help="remesh: lines leaving a point at under 30 degrees may share their first segment, "
+                        "and lines passing closer than 0.25 x the size meet there")
 
 
 def write_polylines(mesh, path) -> None:
