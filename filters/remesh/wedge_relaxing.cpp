@@ -163,9 +163,11 @@ private:
   bool try_close(int k, int p1, int p2) {
     if (places_[size_t(p1)].empty() || places_[size_t(p2)].empty() || is_feature(p1, p2) || on_one_path(p1, p2))
       return false;
+    // Every edge between two line points comes here: the size lookups (a closest point each) last.
     const double width = (out_.points[p1] - out_.points[p2]).Norm();
+    if (!(width <= kCloseGap * size_.max_size()) || !may_merge(p1) || !may_merge(p2)) return false;
     const double h = std::min(size_at_point(out_, locator_, size_, p1), size_at_point(out_, locator_, size_, p2));
-    if (!(width <= kCloseGap * h) || !may_merge(p1) || !may_merge(p2)) return false;
+    if (!(width <= kCloseGap * h)) return false;
     return merge(k, p1, p2, width);
   }
 
@@ -189,6 +191,7 @@ private:
     if (!(t > kSnapFrom && t < 1 - kSnapFrom)) return false;
     const Point3 foot = out_.points[a] + ab * t;
     const double gap = (out_.points[q] - foot).Norm();
+    if (!(gap <= kCloseGap * size_.max_size())) return false;
     const double h = std::min({size_at_point(out_, locator_, size_, a), size_at_point(out_, locator_, size_, b),
                                size_at_point(out_, locator_, size_, q)});
     if (!(gap <= kCloseGap * h)) return false;
@@ -240,14 +243,7 @@ private:
         if (unit_normal(p0, p1, p2) * n_g < kFoldCos) folds = true;
         after = std::min(after, min_angle(p0, p1, p2));
       }
-      for (int f : stars_.of(q)) {
-        if (f == k) continue;
-        const auto& t = out_.faces[size_t(f)];
-        const Point3 n_old = unit_normal(out_.points[t[0]], out_.points[t[1]], out_.points[t[2]]);
-        const Point3 p0 = corner(t[0]), p1 = corner(t[1]), p2 = corner(t[2]);
-        if (unit_normal(p0, p1, p2) * n_old < kFoldCos) folds = true;
-        after = std::min(after, min_angle(p0, p1, p2));
-      }
+      after = std::min(after, star_min_angle(q, {k}, at, q, folds));  // q's other faces, q moved
       if (!folds && after > before + 1e-9) chosen = n;
     }
     if (chosen < 0) return false;
