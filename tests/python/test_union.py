@@ -819,12 +819,13 @@ def test_pipeline_relax_wedges_merges_beside_a_junction_of_lines():
 def test_pipeline_relax_wedges_makes_lines_that_pass_close_meet():
     # scripts/fuzz_union.py --models, seed 34 (cad/fandisk.obj with copies) at 1%: two feature
     # lines pass closer than a quarter of the size without meeting, and the faces between them
-    # stayed at 5.78 degrees. The lines now meet there (close_line_gaps, stop 61): measured 20.00.
+    # stayed at 5.78 degrees. The lines now meet there (close_line_gaps, stop 61): measured 20.00
+    # (deterministic; half a degree below it).
     from meshregrid import pipeline_union
     ms = _models_case_layers(34)
     r = pipeline_union.union(ms, remesh=True, target_percent=1.0, relax_wedges=True)["remesh"]
     assert r["closed_line_gaps"] > 0 and r["unmeshed_sides"] == 0
-    assert r["min_angle"] >= 15.0 and angles(ms.current_mesh()).min() >= 15.0
+    assert r["min_angle"] >= 19.5 and angles(ms.current_mesh()).min() >= 19.5
     topo = ms.get_topological_measures()
     assert topo["boundary_edges"] == 0 and topo["is_mesh_two_manifold"]
 

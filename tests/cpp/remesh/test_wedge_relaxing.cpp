@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 using namespace mr;
 using namespace mr::remesh;
@@ -166,10 +167,13 @@ TEST(RemeshWedgeRelaxing, AJunctionBesideANarrowWedgeTakesTheOtherPointAndStaysW
   EXPECT_EQ(w.paths[2].points, (std::vector<int>{w.d, w.p1, w.c}));
   for (const auto& path : w.paths) EXPECT_FALSE(path.slidable[1]);
   // Where both first points are junctions neither can give way: nothing merges.
+  // (A third line from corner D below line A through P1, a fourth from corner E beyond line B
+  // through P2, each along face edges.)
   Wedge both(20.0);
-  for (int p : {both.p1, both.p2}) {
-    both.out.kind[size_t(both.d)] = PointKind::Corner;
-    both.paths.push_back(both.path({both.d, p, both.c}));
+  for (const auto& [from, p] : {std::pair{both.d, both.p1}, std::pair{both.e, both.p2}}) {
+    both.out.kind[size_t(from)] = PointKind::Corner;
+    both.paths.push_back(both.path({from, p, both.c}));
+    both.features.push_back({from, p});
   }
   EXPECT_TRUE(relax_wedge_tips(both.out, both.paths, both.features, sq.locator, sq.size).empty());
   EXPECT_EQ(both.out.faces.size(), 7u);
